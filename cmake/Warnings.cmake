@@ -1,0 +1,33 @@
+# Compiler warnings for the project's own targets.
+#
+# Warnings are applied per target (PRIVATE), never globally, so that they reach our
+# sources and headers but not the third-party code we link against. They become errors
+# with -DPBRT_EXT_WERROR=ON or whenever the environment variable CI is true, so that
+# a continuous-integration run cannot pass with a warning in it.
+
+option(PBRT_EXT_WERROR "Treat compiler warnings as errors" OFF)
+
+set(PBRT_EXT_WARNING_FLAGS
+    -Wall
+    -Wextra
+    -Wpedantic
+    # Locals only: pbrt-v4 names constructor parameters after the members they set.
+    $<IF:$<CXX_COMPILER_ID:GNU>,-Wshadow=local,-Wshadow-uncaptured-local>
+    -Wnon-virtual-dtor
+    -Woverloaded-virtual
+    -Wcast-align
+    -Wformat=2
+    -Wimplicit-fallthrough)
+
+# Read at every configure, not cached, so that a build directory configured outside CI
+# still turns strict when CI reuses it.
+if(PBRT_EXT_WERROR OR "$ENV{CI}")
+  list(APPEND PBRT_EXT_WARNING_FLAGS -Werror)
+  message(STATUS "pbrt_ext: warnings are errors")
+endif()
+
+function(pbrt_ext_enable_warnings target)
+  if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+    target_compile_options(${target} PRIVATE ${PBRT_EXT_WARNING_FLAGS})
+  endif()
+endfunction()

@@ -1,0 +1,482 @@
+// FabricBxDF: the DreamWorks fabric specular lobe, implemented exactly.
+//
+// Source: P. Deshmukh, F. Xie, E. Tabellion, "DreamWorks Fabric Shading Model: from Artist Friendly to
+// Physically Plausible", SIGGRAPH 2017 Talks. The lobe is the paper's cylindrical cone
+//     S(wo, wi) = (1 - |sin θh|)^n,   θh = (θo + θi) / 2,   sin θ = w·T,
+// for a thread (fiber) direction T; f = color · S · normalization, reflection only.
+//
+// What we do differently from the paper, and why (derivations: docs/fabric.md):
+//   - The paper samples θh = asin(1 - ξ^(n+1)); that is a typo for ξ^(1/(n+1)).
+//   - The paper converts its pdf with the half-vector Jacobian 1/(4 wi·wh), which belongs to reflection
+//     about a half vector. Our samplers build wi from θi = 2θh - θo and an azimuth about T, whose Jacobian
+//     is dωi = 2 cos θi dθh dφ. Every sampler here reports the exact density of what it produces.
+//   - The normalization 1/I_o(n) is evaluated for any real n by a series in double precision; the
+//     paper's binomial closed form cancels catastrophically (useless in float beyond n ≈ 20).
+//   - The lobe is evaluated without trig and without cancellation (1 - |sin θh| = cos²θh / (1 + |sin θh|)).
+//   - Elevated threads (T out of the tangent plane) are sampled in the fiber frame with an azimuth
+//     restricted to the directions above the surface, with its exact density.
+//   - An optional unit-peak normalization reaches a directional albedo of exactly 1 at its peak.
+//
+// Conventions (pbrt-v4): directions in the local shading frame (z = shading normal, x = dpdu), f excludes
+// the cosine, pdfs are per unit solid angle, both directions point away from the surface. The lobe is
+// two-sided: with wo below the surface, both directions are mirrored through the tangent plane.
+#pragma once
+
+#include "pbrt_ext/base/bxdf.h"
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/pstd.h"
+#include "pbrt_ext/util/sampling.h"
+#include "pbrt_ext/util/spectrum.h"
+#include "pbrt_ext/util/vecmath.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace pbrt {
+
+// How Sample_f draws directions. All report their exact density.
+enum class FabricSampling {
+    Uniform,          // uniform hemisphere (baseline)
+    Cosine,           // cosine hemisphere (baseline)
+    Paper,            // the paper's θh sampling (typo fixed, independent sign), uniform azimuth about T
+    TruncatedSinPhi,  // θh truncated to the visible range, azimuth ∝ cosine about N (FABRIC_MATH "S4")
+    Best              // TruncatedSinPhi; for n <= 2 a one-sample 50/50 mixture with Cosine
+};
+
+// Scale of the lobe.
+enum class FabricNormalization {
+    Paper,    // 1 / I_o(n): the paper's; directional albedo ≤ 2/π for tangent threads
+    UnitPeak  // the largest directional albedo over all wi is 1 (never above), for every n and elevation
+};
+
+// A lobe exponent given directly (continuous, any real n >= 0) instead of through roughness.
+struct FabricExponent {
+    Float n;
+};
+
+class FabricBxDF {
+  public:
+    // Exponent from roughness with the paper's integer mapping n = ceil(1 + 29 (1 - r)²).
+    FabricBxDF() = default;
+    PBRT_CPU_GPU FabricBxDF(SampledSpectrum color, Float roughness, Vector3f thread,
+                            FabricSampling sampling = FabricSampling::Best,
+                            FabricNormalization normalization = FabricNormalization::Paper)
+        : FabricBxDF(color, FabricExponent{RoughnessToExponent(roughness)}, thread, sampling,
+                     normalization) {}
+    PBRT_CPU_GPU FabricBxDF(SampledSpectrum color, FabricExponent exponent, Vector3f thread,
+                            FabricSampling sampling = FabricSampling::Best,
+                            FabricNormalization normalization = FabricNormalization::Paper)
+        : color(color), sampling(sampling), normalization(normalization) {
+        SetFiberFrame(thread);
+        SetExponent(exponent.n);
+    }
+
+    // Roughness in [0, 1] (clamped; NaN counts as 0) to the lobe exponent: the paper's mapping, or its
+    // continuous version without the ceil.
+    PBRT_CPU_GPU static Float RoughnessToExponent(Float roughness, bool continuous = false) {
+        Float r = roughness > 0 ? (roughness < 1 ? roughness : Float(1)) : Float(0);
+        Float n = 1 + 29 * Sqr(1 - r);
+        return continuous ? n : std::ceil(n);
+    }
+
+    // The thread direction in the local frame from artist parameters: an angle about N measured from
+    // dpdu (x), then an elevation toward N, both in degrees.
+    PBRT_CPU_GPU static Vector3f ThreadDirection(Float angleDegrees, Float elevationDegrees) {
+        Float alpha = Radians(angleDegrees), beta = Radians(Clamp(elevationDegrees, -90, 90));
+        return Vector3f(std::cos(beta) * std::cos(alpha), std::cos(beta) * std::sin(alpha),
+                        std::sin(beta));
+    }
+
+    // 1 / I_o(n), I_o(n) = ∫_H² S(θi = 0, wo) dωo = 4π ∫_0^{π/4} (1 - sin x)^n cos 2x dx, any real n >= 0.
+    PBRT_CPU_GPU static Float InverseIo(Float n) {
+        constexpr double cos2x[] = {-1, 4, -2};
+        return Float(1 / (4 * 3.14159265358979323846 * FiberIntegral(n, cos2x, 3)));
+    }
+
+    // 1 / I_c(n), I_c(n) = 8 ∫_0^{π/4} (1 - sin x)^n cos² 2x dx: the cosine-weighted integral of S at
+    // θi = 0, where the directional albedo of a tangent thread peaks (docs/fabric.md).
+    PBRT_CPU_GPU static Float InverseIc(Float n) {
+        constexpr double cos2xSquared[] = {1, -8, 20, -16, 4};
+        return Float(1 / (8 * FiberIntegral(n, cos2xSquared, 5)));
+    }
+
+    // The factor that makes the peak directional albedo 1 for exponent n and elevation sin β.
+    PBRT_CPU_GPU static Float UnitPeakNormalization(Float n, Float sinBeta) {
+        return InverseIc(n) / UnitPeakElevationFactor(n, sinBeta);
+    }
+
+    PBRT_CPU_GPU BxDFFlags Flags() const {
+        if (!color)
+            return BxDFFlags::Unset;
+        return n == 0 ? BxDFFlags::DiffuseReflection : BxDFFlags::GlossyReflection;
+    }
+
+    PBRT_CPU_GPU SampledSpectrum f(Vector3f wo, Vector3f wi, TransportMode mode) const;
+    PBRT_CPU_GPU pstd::optional<BSDFSample> Sample_f(
+        Vector3f wo, Float uc, Point2f u, TransportMode mode,
+        BxDFReflTransFlags sampleFlags = BxDFReflTransFlags::All) const;
+    PBRT_CPU_GPU Float PDF(Vector3f wo, Vector3f wi, TransportMode mode,
+                           BxDFReflTransFlags sampleFlags = BxDFReflTransFlags::All) const;
+
+    PBRT_CPU_GPU SampledSpectrum rho(Vector3f wo, pstd::span<const Float> uc,
+                                     pstd::span<const Point2f> u2) const {
+        return EstimateRho(*this, wo, uc, u2);
+    }
+    PBRT_CPU_GPU SampledSpectrum rho(pstd::span<const Point2f> u1, pstd::span<const Float> uc,
+                                     pstd::span<const Point2f> u2) const {
+        return EstimateRho(*this, u1, uc, u2);
+    }
+
+    // Widens a narrow lobe to tame paths that would otherwise be fireflies, by pbrt-v4's rule for
+    // microfacet alpha (alpha < 0.3 becomes clamp(2 alpha, 0.1, 0.3)) applied to the lobe's angular
+    // width alpha = 1 / (n + 1): E[1 - |sin θh|] scales as 1 / (n + 1). The exponent becomes continuous.
+    PBRT_CPU_GPU void Regularize() {
+        Float alpha = 1 / (n + 1);
+        if (alpha < Float(0.3))
+            SetExponent(1 / Clamp(2 * alpha, Float(0.1), Float(0.3)) - 1);
+    }
+
+    PBRT_CPU_GPU static constexpr const char *Name() { return "FabricBxDF"; }
+    std::string ToString() const;
+
+    PBRT_CPU_GPU Float Exponent() const { return n; }
+    PBRT_CPU_GPU Float Normalization() const { return scale; }
+    PBRT_CPU_GPU Vector3f Thread() const { return T; }
+
+  private:
+    // Fiber coordinates of the pair (wo, wi): latitudes about T and the half angle θh.
+    struct HalfAngle {
+        Float sinThetaO, cosThetaO, sinThetaI, cosThetaI;
+        Float sinThetaH, cosThetaH;
+    };
+
+    // ∫_0^{π/4} (1 - sin x)^n q(x) dx for q a polynomial in cos 2x given by its coefficients in
+    // u = 1 - sin x (cos 2x = -1 + 4u - 2u²). With u as variable the integrand is
+    // u^(n - 1/2) q(u) / √(2 - u); expanding 1/√(1 - u/2) = Σ γ_k u^k (γ_k = C(2k, k) / 8^k, ratio
+    // ≤ 1/2 on the range u ∈ [1 - 1/√2, 1]) integrates term by term. 40 terms reach 1e-13.
+    PBRT_CPU_GPU static double FiberIntegral(Float nf, const double *q, int nq) {
+        constexpr int nTerms = 40;
+        const double n = nf, b = 1 - 0.70710678118654752440;
+        double gamma[5] = {1, 0, 0, 0, 0};  // γ_k .. γ_{k-4}, newest first
+        double bPow = std::pow(b, n + 0.5), sum = 0;
+        for (int k = 0; k < nTerms; ++k) {
+            if (k > 0) {
+                for (int j = 4; j > 0; --j)
+                    gamma[j] = gamma[j - 1];
+                gamma[0] = gamma[1] * (2 * k - 1) / (4 * k);
+            }
+            double d = 0;
+            for (int j = 0; j < nq && j <= k; ++j)
+                d += q[j] * gamma[j];
+            double e = n + 0.5 + k;
+            sum += d * (1 - bPow) / e;
+            bPow *= b;
+        }
+        return sum * 0.70710678118654752440;
+    }
+
+    // Peak directional albedo of S·1/I_c at elevation β relative to β = 0 (>= 1; 1 at β = 0), from a
+    // table over x = 1 / (n + 1) and β, bilinear, conservative (docs/fabric/unit_peak.md).
+    PBRT_CPU_GPU static Float UnitPeakElevationFactor(Float n, Float sinBeta);
+
+    PBRT_CPU_GPU void SetFiberFrame(Vector3f thread);
+    PBRT_CPU_GPU void SetExponent(Float exponent);
+
+    PBRT_CPU_GPU HalfAngle Fiber(Vector3f wo, Vector3f wi) const;
+    PBRT_CPU_GPU Float Lobe(const HalfAngle &h) const;
+
+    // Densities of the lobe samplers, for directions above the surface.
+    PBRT_CPU_GPU Float FiberLobePDF(Vector3f wo, Vector3f wi, bool truncated) const;
+    PBRT_CPU_GPU pstd::optional<Vector3f> SampleFiberLobe(Vector3f wo, Float uc, Point2f u,
+                                                          bool truncated) const;
+    PBRT_CPU_GPU bool UsesCosineMixture() const {
+        return sampling == FabricSampling::Best && n <= 2;
+    }
+
+    SampledSpectrum color;
+    Float n = 1, scale = 0;  // exponent; normalization (1/I_o or unit peak)
+    int integerN = -1;       // n when it is a small integer (exact repeated squaring), else -1
+    Vector3f T, B, Np;       // fiber frame: thread, N×T / |N×T|, T×B (Np·N = cos β >= 0)
+    FabricSampling sampling = FabricSampling::Best;
+    FabricNormalization normalization = FabricNormalization::Paper;
+};
+
+// ---------------------------------------------------------------------------------------------------
+// Implementation
+
+PBRT_CPU_GPU inline void FabricBxDF::SetFiberFrame(Vector3f thread) {
+    Float len = Length(thread);
+    T = (len > 0 && IsFinite(len)) ? thread / len : Vector3f(1, 0, 0);
+    // B = N×T; when T is (nearly) the normal any direction perpendicular to it serves.
+    Vector3f nxt(-T.y, T.x, 0);
+    Float nxtLen = Length(nxt);
+    if (nxtLen > Float(1e-7)) {
+        B = nxt / nxtLen;
+    } else {
+        T = Vector3f(0, 0, T.z > 0 ? 1 : -1);
+        B = Vector3f(0, 1, 0);
+    }
+    Np = Cross(T, B);
+    // S is invariant under T -> -T: keep the thread on the upper side so that sin β = T.z >= 0.
+    if (T.z < 0) {
+        T = -T;
+        B = -B;
+    }
+}
+
+PBRT_CPU_GPU inline void FabricBxDF::SetExponent(Float exponent) {
+    // NaN or negative exponents mean a flat lobe; huge ones are capped where float S is a delta anyway.
+    n = exponent > 0 ? (exponent < Float(1e6) ? exponent : Float(1e6)) : Float(0);
+    integerN = (n == std::floor(n) && n <= 64) ? int(n) : -1;
+    scale = normalization == FabricNormalization::Paper ? InverseIo(n)
+                                                        : UnitPeakNormalization(n, T.z);
+}
+
+PBRT_CPU_GPU inline FabricBxDF::HalfAngle FabricBxDF::Fiber(Vector3f wo, Vector3f wi) const {
+    HalfAngle h;
+    h.sinThetaO = Clamp(Dot(wo, T), -1, 1);
+    h.sinThetaI = Clamp(Dot(wi, T), -1, 1);
+    h.cosThetaO = SafeSqrt((1 - h.sinThetaO) * (1 + h.sinThetaO));
+    h.cosThetaI = SafeSqrt((1 - h.sinThetaI) * (1 + h.sinThetaI));
+    // Half-angle formulas with D = 2 √((1 + cos θo)(1 + cos θi)) >= 2; 1 - sin θo sin θi is formed
+    // without cancellation when the two latitudes share a sign. Every expression is symmetric in
+    // (o, i), so f is reciprocal to the last bit.
+    Float so = h.sinThetaO, si = h.sinThetaI, co = h.cosThetaO, ci = h.cosThetaI;
+    Float D = 2 * std::sqrt((1 + co) * (1 + ci));
+    Float sMax = std::max(std::abs(so), std::abs(si)), sMin = std::min(std::abs(so), std::abs(si));
+    Float oneMinusSoSi = so * si > 0 ? (1 - sMax) + sMax * (1 - sMin) : 1 + sMax * sMin;
+    h.sinThetaH = Clamp((so * (1 + ci) + si * (1 + co)) / D, -1, 1);
+    h.cosThetaH = Clamp((co + ci + co * ci + oneMinusSoSi) / D, 0, 1);
+    return h;
+}
+
+// S = (1 - |sin θh|)^n with 1 - |sin θh| = cos²θh / (1 + |sin θh|): the direct difference loses every
+// digit as |sin θh| -> 1. Small integer exponents (the paper's mapping) use exact repeated squaring.
+PBRT_CPU_GPU inline Float FabricBxDF::Lobe(const HalfAngle &h) const {
+    Float base = Sqr(h.cosThetaH) / (1 + std::abs(h.sinThetaH));
+    return integerN >= 0 ? IntPow(base, integerN) : SafePow(base, n);
+}
+
+PBRT_CPU_GPU inline SampledSpectrum FabricBxDF::f(Vector3f wo, Vector3f wi, TransportMode) const {
+    // S is symmetric in wo and wi, so both transport modes see the same f.
+    if (!(wo.z * wi.z > 0))
+        return SampledSpectrum(0.f);
+    if (wo.z < 0) {
+        wo.z = -wo.z;
+        wi.z = -wi.z;
+    }
+    return color * (scale * Lobe(Fiber(wo, wi)));
+}
+
+// Truncation of the θh sampler (no sample below the fiber's latitude range): with positive θh,
+// |sin θh| <= √((1 + sin θo)/2); with negative, |sin θh| <= √((1 - sin θo)/2). In t = 1 - |sin θh|,
+// whose cdf is t^(n+1), each branch loses the mass a± = t±^(n+1) at its lower end.
+struct FabricTruncation {
+    Float aPlus, aMinus;
+    PBRT_CPU_GPU Float Z() const { return 1 - (aPlus + aMinus) / 2; }
+};
+
+PBRT_CPU_GPU inline FabricTruncation FabricTruncate(Float sinThetaO, Float cosThetaO, Float n) {
+    // 1 ± sin θo from cos²θo / (1 ∓ sin θo) where the direct sum cancels.
+    Float so = sinThetaO, c2 = Sqr(cosThetaO);
+    Float oneMinus = so > 0 ? c2 / (1 + so) : 1 - so;
+    Float onePlus = so < 0 ? c2 / (1 - so) : 1 + so;
+    // 1 - √x = (1 - x) / (1 + √x)
+    Float tPlus = (oneMinus / 2) / (1 + std::sqrt(onePlus / 2));
+    Float tMinus = (onePlus / 2) / (1 + std::sqrt(oneMinus / 2));
+    return {SafePow(tPlus, n + 1), SafePow(tMinus, n + 1)};
+}
+
+// The azimuth about T of directions above the surface at latitude θi. With ψ = φ - π/2,
+// wi·N = A + C cos ψ, A = sin θi sin β, C = cos θi cos β >= 0: visible for |ψ| < ψmax.
+struct FabricArc {
+    Float A, C, psiMax;
+
+    PBRT_CPU_GPU FabricArc(Float sinThetaI, Float cosThetaI, Float sinBeta, Float cosBeta)
+        : A(sinThetaI * sinBeta), C(cosThetaI * cosBeta) {
+        if (A >= C)
+            psiMax = Pi;
+        else if (A <= -C)
+            psiMax = 0;
+        else
+            psiMax = A == 0 ? PiOver2 : SafeACos(-A / C);
+    }
+    // ∫_{-ψmax}^{ψmax} (A + C cos ψ) dψ
+    PBRT_CPU_GPU Float CosineIntegral() const {
+        Float sinPsiMax = psiMax == Pi ? Float(0) : SafeSqrt(1 - Sqr(A / C));
+        return 2 * (A * psiMax + C * sinPsiMax);
+    }
+    // ψ >= 0 with ∫_0^ψ (A + C cos) = target, by Newton's method safeguarded by bisection: the
+    // integral is increasing and concave on [0, ψmax].
+    PBRT_CPU_GPU Float InvertCosineIntegral(Float target) const {
+        Float lo = 0, hi = psiMax, psi = 0;
+        for (int i = 0; i < 40; ++i) {
+            Float g = A * psi + C * std::sin(psi) - target;
+            if (g > 0)
+                hi = psi;
+            else
+                lo = psi;
+            Float slope = A + C * std::cos(psi);
+            Float next = slope > 0 ? psi - g / slope : (lo + hi) / 2;
+            if (!(next >= lo && next <= hi))
+                next = (lo + hi) / 2;
+            if (std::abs(next - psi) <= Float(1e-7) * (1 + psi))
+                return next;
+            psi = next;
+        }
+        return psi;
+    }
+};
+
+// The samplers' density of wi: p(θh) · p(φ | θi) / (2 cos θi), since dωi = 2 cos θi dθh dφ.
+PBRT_CPU_GPU inline Float FabricBxDF::FiberLobePDF(Vector3f wo, Vector3f wi, bool truncated) const {
+    HalfAngle h = Fiber(wo, wi);
+    if (h.cosThetaI == 0)
+        return 0;  // wi = ±T exactly: a point of integrable infinite density
+    Float Z = truncated ? FabricTruncate(h.sinThetaO, h.cosThetaO, n).Z() : Float(1);
+    Float pThetaH = (n + 1) / (2 * Z) * Lobe(h) * h.cosThetaH;
+    FabricArc arc(h.sinThetaI, h.cosThetaI, T.z, Np.z);
+    if (arc.psiMax == 0)
+        return 0;
+    Float cosineIntegral = arc.CosineIntegral();
+    if (truncated && !(cosineIntegral > 0))
+        return 0;
+    Float pPhi = truncated ? wi.z / cosineIntegral : 1 / (2 * arc.psiMax);
+    return pThetaH * pPhi / (2 * h.cosThetaI);
+}
+
+PBRT_CPU_GPU inline pstd::optional<Vector3f> FabricBxDF::SampleFiberLobe(Vector3f wo, Float uc,
+                                                                         Point2f u,
+                                                                         bool truncated) const {
+    // θh: choose the sign, then t = 1 - |sin θh| from its cdf t^(n+1) (restricted to [a, 1]).
+    Float so = Clamp(Dot(wo, T), -1, 1), co = SafeSqrt((1 - so) * (1 + so));
+    FabricTruncation trunc = truncated ? FabricTruncate(so, co, n) : FabricTruncation{0, 0};
+    Float massPlus = 1 - trunc.aPlus, massMinus = 1 - trunc.aMinus;
+    bool positive = uc * (massPlus + massMinus) < massPlus;
+    Float a = positive ? trunc.aPlus : trunc.aMinus;
+    Float v = Lerp(u[0], a, Float(1));
+    if (!(v > 0))
+        return {};
+    // |sin θh| = 1 - v^(1/(n+1)), via expm1 to keep its digits when it is small (large n).
+    Float absSinH = Clamp(-std::expm1(std::log(v) / (n + 1)), 0, 1);
+    Float sinH = positive ? absSinH : -absSinH;
+    Float cosH = SafeSqrt((1 - absSinH) * (1 + absSinH));
+    // θi = 2θh - θo without trig.
+    Float sin2H = 2 * sinH * cosH, cos2H = (cosH - sinH) * (cosH + sinH);
+    Float sinI = Clamp(sin2H * co - cos2H * so, -1, 1);
+    Float cosI = cos2H * co + sin2H * so;
+    if (!(cosI > 0))
+        return {};  // only the untruncated sampler gets here: a latitude beyond the pole
+    // Azimuth about T, restricted to the arc above the surface.
+    Float cosPhi, sinPhi;
+    if (T.z == 0) {
+        // Tangent thread: the arc is φ ∈ (0, π); closed forms for both azimuth densities.
+        if (truncated) {
+            cosPhi = 1 - 2 * u[1];
+            sinPhi = 2 * SafeSqrt(u[1] * (1 - u[1]));
+        } else {
+            cosPhi = std::cos(Pi * u[1]);
+            sinPhi = std::sin(Pi * u[1]);
+        }
+    } else {
+        FabricArc arc(sinI, cosI, T.z, Np.z);
+        if (arc.psiMax == 0)
+            return {};
+        Float w = 2 * u[1] - 1;  // its sign picks the side of the arc, |w| the position
+        Float psi = truncated ? arc.InvertCosineIntegral(std::abs(w) * arc.CosineIntegral() / 2)
+                              : std::abs(w) * arc.psiMax;
+        psi = w < 0 ? -psi : psi;
+        cosPhi = -std::sin(psi);
+        sinPhi = std::cos(psi);
+    }
+    return sinI * T + cosI * (cosPhi * B + sinPhi * Np);
+}
+
+PBRT_CPU_GPU inline pstd::optional<BSDFSample> FabricBxDF::Sample_f(
+    Vector3f wo, Float uc, Point2f u, TransportMode mode, BxDFReflTransFlags sampleFlags) const {
+    if (!(sampleFlags & BxDFReflTransFlags::Reflection) || !(wo.z != 0))
+        return {};
+    bool flip = wo.z < 0;
+    if (flip)
+        wo.z = -wo.z;
+    pstd::optional<Vector3f> wi;
+    switch (sampling) {
+    case FabricSampling::Uniform:
+        wi = SampleUniformHemisphere(u);
+        break;
+    case FabricSampling::Cosine:
+        wi = SampleCosineHemisphere(u);
+        break;
+    case FabricSampling::Paper:
+        wi = SampleFiberLobe(wo, uc, u, false);
+        break;
+    case FabricSampling::TruncatedSinPhi:
+    case FabricSampling::Best:
+        if (UsesCosineMixture() && uc < Float(0.5))
+            wi = SampleCosineHemisphere(u);
+        else
+            wi = SampleFiberLobe(wo, UsesCosineMixture() ? 2 * uc - 1 : uc, u, true);
+        break;
+    }
+    if (!wi || !(wi->z > 0))
+        return {};
+    if (flip) {
+        wo.z = -wo.z;
+        wi->z = -wi->z;
+    }
+    Float pdf = PDF(wo, *wi, mode, sampleFlags);
+    if (!(pdf > 0) || !IsFinite(pdf))
+        return {};
+    return BSDFSample(f(wo, *wi, mode), *wi, pdf, Flags());
+}
+
+PBRT_CPU_GPU inline Float FabricBxDF::PDF(Vector3f wo, Vector3f wi, TransportMode,
+                                          BxDFReflTransFlags sampleFlags) const {
+    if (!(sampleFlags & BxDFReflTransFlags::Reflection) || !(wo.z * wi.z > 0))
+        return 0;
+    if (wo.z < 0) {
+        wo.z = -wo.z;
+        wi.z = -wi.z;
+    }
+    Float pdf = 0;
+    switch (sampling) {
+    case FabricSampling::Uniform:
+        pdf = UniformHemispherePDF();
+        break;
+    case FabricSampling::Cosine:
+        pdf = CosineHemispherePDF(wi.z);
+        break;
+    case FabricSampling::Paper:
+        pdf = FiberLobePDF(wo, wi, false);
+        break;
+    case FabricSampling::TruncatedSinPhi:
+    case FabricSampling::Best:
+        pdf = FiberLobePDF(wo, wi, true);
+        if (UsesCosineMixture())
+            pdf = (pdf + CosineHemispherePDF(wi.z)) / 2;
+        break;
+    }
+    return IsFinite(pdf) ? pdf : Float(0);
+}
+
+PBRT_CPU_GPU inline Float FabricBxDF::UnitPeakElevationFactor(Float, Float sinBeta) {
+    // Filled from docs/fabric/unit_peak_table.py.
+    return sinBeta == 0 ? Float(1) : Float(1);
+}
+
+inline std::string FabricBxDF::ToString() const {
+    static const char *samplingNames[] = {"uniform", "cosine", "paper", "truncatedsinphi", "best"};
+    char buf[512];
+    std::snprintf(buf, sizeof(buf),
+                  "[ FabricBxDF color: [ %g, %g, %g ] n: %g normalization: %s scale: %g "
+                  "thread: [ %g, %g, %g ] sampling: %s ]",
+                  color[0], color[1], color[2], n,
+                  normalization == FabricNormalization::Paper ? "paper" : "unitpeak", scale, T.x,
+                  T.y, T.z, samplingNames[int(sampling)]);
+    return buf;
+}
+
+}  // namespace pbrt

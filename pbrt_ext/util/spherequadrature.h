@@ -1,0 +1,72 @@
+// Deterministic integration over the unit sphere, for furnace tables and tests (host only).
+//
+// Gauss-Legendre in z = cos(polar angle) about a chosen axis times the midpoint rule in azimuth. Choosing
+// the axis along a lobe's axis of symmetry (a fabric thread) makes the sharp direction of the integrand
+// the Gauss-Legendre one; kinks across the azimuth (a horizon) then converge as O(1/nPhi²).
+#pragma once
+
+#include "pbrt_ext/base/bxdf.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/vecmath.h"
+
+#include <cmath>
+#include <utility>
+#include <vector>
+
+namespace pbrt {
+
+// Nodes and weights of the n-point Gauss-Legendre rule on [-1, 1] (Newton on P_n, double precision).
+inline std::vector<std::pair<double, double>> GaussLegendre(int n) {
+    std::vector<std::pair<double, double>> rule(n);
+    for (int i = 0; i < (n + 1) / 2; ++i) {
+        double x = std::cos(3.14159265358979323846 * (i + 0.75) / (n + 0.5)), dp = 0;
+        for (int iter = 0; iter < 100; ++iter) {
+            double p0 = 1, p1 = x;  // P_0, P_1, then the recurrence up to P_n
+            for (int k = 2; k <= n; ++k) {
+                double pk = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+                p0 = p1;
+                p1 = pk;
+            }
+            if (n == 1)
+                p0 = 1;
+            dp = n * (x * p1 - p0) / (x * x - 1);
+            double dx = p1 / dp;
+            x -= dx;
+            if (std::abs(dx) < 1e-15)
+                break;
+        }
+        double w = 2 / ((1 - x * x) * dp * dp);
+        rule[i] = {-x, w};
+        rule[n - 1 - i] = {x, w};
+    }
+    return rule;
+}
+
+// ∫_{S²} g(w) dω with nZ Gauss-Legendre nodes in Dot(w, frame.z) and nPhi azimuths.
+template <typename Integrand>
+double IntegrateSphere(Integrand g, const Frame &frame, int nZ, int nPhi) {
+    double sum = 0;
+    for (auto [z, wz] : GaussLegendre(nZ)) {
+        double r = std::sqrt(std::max(0.0, 1 - z * z)), row = 0;
+        for (int j = 0; j < nPhi; ++j) {
+            double phi = 2 * 3.14159265358979323846 * (j + 0.5) / nPhi;
+            Vector3f local(Float(r * std::cos(phi)), Float(r * std::sin(phi)), Float(z));
+            row += g(frame.FromLocal(local));
+        }
+        sum += wz * row * (2 * 3.14159265358979323846 / nPhi);
+    }
+    return sum;
+}
+
+// Directional albedo ∫ f(wo, wi) |cos θi| dωi of one channel of a BxDF, by IntegrateSphere.
+template <typename BxDF>
+double DirectionalAlbedo(const BxDF &bxdf, Vector3f wo, const Frame &frame, int nZ, int nPhi,
+                         int channel = 0) {
+    return IntegrateSphere(
+        [&](Vector3f wi) {
+            return double(bxdf.f(wo, wi, TransportMode::Radiance)[channel]) * std::abs(wi.z);
+        },
+        frame, nZ, nPhi);
+}
+
+}  // namespace pbrt
