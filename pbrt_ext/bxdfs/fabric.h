@@ -185,6 +185,10 @@ class FabricBxDF {
     PBRT_CPU_GPU void SetFiberFrame(Vector3f thread);
     PBRT_CPU_GPU void SetExponent(Float exponent);
 
+    // Fiber latitude θ of a direction: sin θ = w·T, and cos θ = |w × T|, which keeps its digits near
+    // the poles w = ±T where the samplers' density concentrates; √(1 - sin²θ) would not.
+    PBRT_CPU_GPU Float SinLatitude(Vector3f w) const { return Clamp(Dot(w, T), -1, 1); }
+    PBRT_CPU_GPU Float CosLatitude(Vector3f w) const { return Clamp(Length(Cross(w, T)), 0, 1); }
     PBRT_CPU_GPU HalfAngle Fiber(Vector3f wo, Vector3f wi) const;
     PBRT_CPU_GPU Float Lobe(const HalfAngle &h) const;
 
@@ -237,10 +241,10 @@ PBRT_CPU_GPU inline void FabricBxDF::SetExponent(Float exponent) {
 
 PBRT_CPU_GPU inline FabricBxDF::HalfAngle FabricBxDF::Fiber(Vector3f wo, Vector3f wi) const {
     HalfAngle h;
-    h.sinThetaO = Clamp(Dot(wo, T), -1, 1);
-    h.sinThetaI = Clamp(Dot(wi, T), -1, 1);
-    h.cosThetaO = SafeSqrt((1 - h.sinThetaO) * (1 + h.sinThetaO));
-    h.cosThetaI = SafeSqrt((1 - h.sinThetaI) * (1 + h.sinThetaI));
+    h.sinThetaO = SinLatitude(wo);
+    h.sinThetaI = SinLatitude(wi);
+    h.cosThetaO = CosLatitude(wo);
+    h.cosThetaI = CosLatitude(wi);
     // Half-angle formulas with D = 2 √((1 + cos θo)(1 + cos θi)) >= 2; 1 - sin θo sin θi is formed
     // without cancellation when the two latitudes share a sign. Every expression is symmetric in
     // (o, i), so f is reciprocal to the last bit.
@@ -352,7 +356,7 @@ PBRT_CPU_GPU inline pstd::optional<Vector3f> FabricBxDF::SampleFiberLobe(Vector3
                                                                          Point2f u,
                                                                          bool truncated) const {
     // θh: choose the sign, then t = 1 - |sin θh| from its cdf t^(n+1) (restricted to [a, 1]).
-    Float so = Clamp(Dot(wo, T), -1, 1), co = SafeSqrt((1 - so) * (1 + so));
+    Float so = SinLatitude(wo), co = CosLatitude(wo);
     FabricTruncation trunc = truncated ? FabricTruncate(so, co, n) : FabricTruncation{0, 0};
     Float massPlus = 1 - trunc.aPlus, massMinus = 1 - trunc.aMinus;
     bool positive = uc * (massPlus + massMinus) < massPlus;

@@ -42,31 +42,48 @@ inline std::vector<std::pair<double, double>> GaussLegendre(int n) {
     return rule;
 }
 
-// ∫_{S²} g(w) dω with nZ Gauss-Legendre nodes in Dot(w, frame.z) and nPhi azimuths.
+// ∫_{S²} g(w) dω: Gauss-Legendre with nZ nodes in z = Dot(w, frame.z) on each interval between the
+// sorted breakpoints zBreaks (where the integrand has a kink or a sharp peak), nPhi azimuths.
 template <typename Integrand>
-double IntegrateSphere(Integrand g, const Frame &frame, int nZ, int nPhi) {
+double IntegrateSphere(Integrand g, const Frame &frame, const std::vector<double> &zBreaks, int nZ,
+                       int nPhi) {
+    const double twoPi = 2 * 3.14159265358979323846;
+    std::vector<double> edges{-1};
+    for (double z : zBreaks)
+        if (z > edges.back() && z < 1)
+            edges.push_back(z);
+    edges.push_back(1);
+    auto rule = GaussLegendre(nZ);
     double sum = 0;
-    for (auto [z, wz] : GaussLegendre(nZ)) {
-        double r = std::sqrt(std::max(0.0, 1 - z * z)), row = 0;
-        for (int j = 0; j < nPhi; ++j) {
-            double phi = 2 * 3.14159265358979323846 * (j + 0.5) / nPhi;
-            Vector3f local(Float(r * std::cos(phi)), Float(r * std::sin(phi)), Float(z));
-            row += g(frame.FromLocal(local));
+    for (size_t k = 0; k + 1 < edges.size(); ++k) {
+        double half = (edges[k + 1] - edges[k]) / 2, mid = (edges[k + 1] + edges[k]) / 2;
+        for (auto [x, wx] : rule) {
+            double z = mid + half * x, r = std::sqrt(std::max(0.0, 1 - z * z)), row = 0;
+            for (int j = 0; j < nPhi; ++j) {
+                double phi = twoPi * (j + 0.5) / nPhi;
+                row += g(frame.FromLocal(
+                    Vector3f(Float(r * std::cos(phi)), Float(r * std::sin(phi)), Float(z))));
+            }
+            sum += half * wx * row * (twoPi / nPhi);
         }
-        sum += wz * row * (2 * 3.14159265358979323846 / nPhi);
     }
     return sum;
 }
 
+template <typename Integrand>
+double IntegrateSphere(Integrand g, const Frame &frame, int nZ, int nPhi) {
+    return IntegrateSphere(g, frame, {}, nZ, nPhi);
+}
+
 // Directional albedo ∫ f(wo, wi) |cos θi| dωi of one channel of a BxDF, by IntegrateSphere.
 template <typename BxDF>
-double DirectionalAlbedo(const BxDF &bxdf, Vector3f wo, const Frame &frame, int nZ, int nPhi,
-                         int channel = 0) {
+double DirectionalAlbedo(const BxDF &bxdf, Vector3f wo, const Frame &frame,
+                         const std::vector<double> &zBreaks, int nZ, int nPhi, int channel = 0) {
     return IntegrateSphere(
         [&](Vector3f wi) {
             return double(bxdf.f(wo, wi, TransportMode::Radiance)[channel]) * std::abs(wi.z);
         },
-        frame, nZ, nPhi);
+        frame, zBreaks, nZ, nPhi);
 }
 
 }  // namespace pbrt

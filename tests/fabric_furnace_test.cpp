@@ -1,0 +1,180 @@
+// White furnace: the directional albedo a(wo) = ∫ f(wo, wi) cos θi dωi of FabricBxDF, by quadrature,
+// against the reference albedos; never above 1 for either normalization; exactly 1 at the peak for the
+// unit-peak one; Regularize keeps it so; rho() estimates it.
+#include "pbrt_ext/bxdfs/fabric.h"
+#include "pbrt_ext/util/rng.h"
+#include "pbrt_ext/util/spherequadrature.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <string>
+#include <vector>
+
+using namespace pbrt;
+
+namespace {
+
+// The reference albedos are accurate to ~1e-9; our quadrature of the float BxDF to ~1e-4.
+constexpr double kAlbedoTolerance = 1e-3;
+// Energy bound, with room only for the quadrature's own error.
+constexpr double kQuadratureError = 2e-4;
+// The unit-peak normalization reaches 1 at its peak to within this (docs/fabric/unit_peak.md).
+constexpr double kUnitPeakMinimum = 0.99;
+// rho() by 2^16 importance samples against quadrature: > 10 standard errors for every case here.
+constexpr double kRhoRelativeTolerance = 5e-3;
+
+// Integrate about the thread: the lobe is sharp only in the fiber latitude, with a cusp at
+// sin θi = -sin θo and a width of ~1/(n+1) in sin θi. Breakpoints there, geometrically spaced.
+double Albedo(const FabricBxDF &bxdf, Vector3f wo, int nPhi = 768) {
+    double cusp = -Dot(wo, bxdf.Thread()), width = 1 / (bxdf.Exponent() + 1);
+    std::vector<double> breaks;
+    for (double d = width / 64; d < 2; d *= 2) {
+        breaks.push_back(cusp - d);
+        breaks.push_back(cusp + d);
+    }
+    breaks.push_back(cusp);
+    std::sort(breaks.begin(), breaks.end());
+    return DirectionalAlbedo(bxdf, wo, Frame::FromZ(bxdf.Thread()), breaks, 12, nPhi);
+}
+
+Vector3f FromPolarAzimuth(Float polarDegrees, Float azimuthDegrees) {
+    Float theta = Radians(polarDegrees), phi = Radians(azimuthDegrees);
+    return SphericalDirection(std::sin(theta), std::cos(theta), phi);
+}
+
+// Directions above the surface on a (polar, azimuth) grid, the normal included.
+std::vector<Vector3f> DirectionGrid() {
+    std::vector<Vector3f> dirs{Vector3f(0, 0, 1)};
+    for (Float polar : {15.f, 30.f, 45.f, 60.f, 75.f, 88.f})
+        for (Float az = 0; az < 360; az += 30)
+            dirs.push_back(FromPolarAzimuth(polar, az));
+    return dirs;
+}
+
+struct FurnaceCase {
+    Float n, elevation;
+};
+const FurnaceCase kCases[] = {{0, 0},   {0.5f, 0}, {1, 0},   {2.5f, 0},  {5, 0},   {30, 0},
+                              {100, 0}, {1, 30},   {5, 30},  {30, 30},   {1, 60},  {5, 60},
+                              {30, 60}, {2.5f, 45}, {10, 75}, {10, 90}};
+
+FabricBxDF Make(FurnaceCase c, FabricNormalization norm) {
+    return FabricBxDF(SampledSpectrum(1), FabricExponent{c.n},
+                      FabricBxDF::ThreadDirection(0, c.elevation), FabricSampling::Best, norm);
+}
+
+double MaxAlbedo(const FabricBxDF &bxdf) {
+    double peak = 0;
+    for (Vector3f wo : DirectionGrid())
+        peak = std::max(peak, Albedo(bxdf, wo, 256));
+    return peak;
+}
+
+}  // namespace
+
+TEST(FabricFurnace, AlbedoMatchesReference) {
+    std::ifstream in(std::string(PBRT_EXT_TEST_DATA_DIR) + "/fabric_reference.json");
+    nlohmann::json ref = nlohmann::json::parse(in);
+    for (const auto &c : ref["directional_albedo"]) {
+        Float beta = c["beta_deg"].get<Float>();
+        // The reference thread is T = (cos β, 0, sin β).
+        FabricBxDF bxdf(SampledSpectrum(1), FabricExponent{c["n"].get<Float>()},
+                        FabricBxDF::ThreadDirection(0, beta));
+        Vector3f w(c["w"][0].get<Float>(), c["w"][1].get<Float>(), c["w"][2].get<Float>());
+        EXPECT_NEAR(Albedo(bxdf, w), c["albedo_paper_over_Io"].get<double>(), kAlbedoTolerance)
+            << c.dump();
+    }
+}
+
+TEST(FabricFurnace, NeverAboveOneForEitherNormalization) {
+    for (FurnaceCase c : kCases)
+        for (auto norm : {FabricNormalization::Paper, FabricNormalization::UnitPeak})
+            EXPECT_LE(MaxAlbedo(Make(c, norm)), 1 + kQuadratureError)
+                << "n " << c.n << " elevation " << c.elevation << " " << Make(c, norm).ToString();
+}
+
+TEST(FabricFurnace, UnitPeakReachesOneAtItsPeak) {
+    for (FurnaceCase c : kCases) {
+        FabricBxDF bxdf = Make(c, FabricNormalization::UnitPeak);
+        EXPECT_GE(MaxAlbedo(bxdf), kUnitPeakMinimum) << bxdf.ToString();
+    }
+}
+
+TEST(FabricFurnace, TangentThreadPeaksAtOneExactlyPerpendicularToTheThread) {
+    // For a tangent thread the albedo peaks at θ = 0 (wi ⊥ T), where unit peak is exact by construction.
+    for (Float n : {0.f, 1.f, 3.3f, 30.f, 1000.f}) {
+        FabricBxDF bxdf(SampledSpectrum(1), FabricExponent{n}, Vector3f(1, 0, 0),
+                        FabricSampling::Best, FabricNormalization::UnitPeak);
+        EXPECT_NEAR(Albedo(bxdf, Vector3f(0, 0, 1)), 1, kQuadratureError)
+            << "n " << n;
+    }
+}
+
+TEST(FabricRegularize, WidensTheLobeAndKeepsTheFurnaceBounds) {
+    for (FurnaceCase c : kCases) {
+        for (auto norm : {FabricNormalization::Paper, FabricNormalization::UnitPeak}) {
+            FabricBxDF sharp = Make(c, norm), regularized = sharp;
+            regularized.Regularize();
+            // pbrt-v4's alpha rule on alpha = 1/(n+1): narrow lobes get at most n = 9 and at
+            // least halve their width; lobes with n <= 7/3 are left alone.
+            if (c.n > Float(7) / 3) {
+                EXPECT_LT(regularized.Exponent(), sharp.Exponent());
+                EXPECT_LE(regularized.Exponent(), 9 + 1e-4f);
+                EXPECT_NEAR(regularized.Exponent(),
+                            std::max(Float(7) / 3, std::min(Float(9), (c.n + 1) / 2 - 1)), 1e-3f);
+            } else {
+                EXPECT_EQ(regularized.Exponent(), sharp.Exponent());
+            }
+            double peak = MaxAlbedo(regularized);
+            EXPECT_LE(peak, 1 + kQuadratureError) << regularized.ToString();
+            if (norm == FabricNormalization::UnitPeak) {
+                EXPECT_GE(peak, kUnitPeakMinimum) << regularized.ToString();
+            }
+        }
+    }
+}
+
+TEST(FabricRho, DirectionalRhoAgreesWithQuadrature) {
+    constexpr int kSamples = 1 << 16;
+    std::vector<Float> uc(kSamples);
+    std::vector<Point2f> u2(kSamples);
+    RNG rng(1);
+    for (int i = 0; i < kSamples; ++i) {
+        uc[i] = rng.Uniform<Float>();
+        u2[i] = Point2f(rng.Uniform<Float>(), rng.Uniform<Float>());
+    }
+    for (FurnaceCase c : {FurnaceCase{1, 0}, FurnaceCase{5, 0}, FurnaceCase{30, 30}}) {
+        FabricBxDF bxdf = Make(c, FabricNormalization::Paper);
+        // Not wo = T (polar 60°, azimuth 0 at β = 30°), where the albedo is ~4e-7.
+        for (Vector3f wo : {Vector3f(0, 0, 1), FromPolarAzimuth(50, 200), FromPolarAzimuth(45, 120)}) {
+            double expected = Albedo(bxdf, wo);
+            double estimate = bxdf.rho(wo, uc, u2)[0];
+            EXPECT_NEAR(estimate, expected, kRhoRelativeTolerance * expected)
+                << bxdf.ToString() << " wo polar " << SphericalTheta(wo);
+        }
+    }
+}
+
+TEST(FabricRho, HemisphericalRhoIsTheCosineWeightedMeanAlbedo) {
+    // ρ_hh = (1/π) ∫ a(wo) cos θo dωo; its quadrature against rho(u1, uc, u2).
+    constexpr int kSamples = 1 << 16;
+    std::vector<Float> uc(kSamples);
+    std::vector<Point2f> u1(kSamples), u2(kSamples);
+    RNG rng(2);
+    for (int i = 0; i < kSamples; ++i) {
+        uc[i] = rng.Uniform<Float>();
+        u1[i] = Point2f(rng.Uniform<Float>(), rng.Uniform<Float>());
+        u2[i] = Point2f(rng.Uniform<Float>(), rng.Uniform<Float>());
+    }
+    FabricBxDF bxdf(SampledSpectrum(1), FabricExponent{5}, Vector3f(1, 0, 0));
+    double expected = IntegrateSphere(
+                          [&](Vector3f wo) {
+                              return wo.z > 0 ? Albedo(bxdf, wo, 64) * wo.z : 0.0;
+                          },
+                          Frame::FromZ(Vector3f(0, 0, 1)), 24, 24) /
+                      Pi;
+    EXPECT_NEAR(bxdf.rho(u1, uc, u2)[0], expected, 0.02 * expected);
+}
