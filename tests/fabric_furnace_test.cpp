@@ -1,14 +1,12 @@
 // White furnace: the directional albedo a(wo) = ∫ f(wo, wi) cos θi dωi of FabricBxDF, by quadrature,
 // against the reference albedos; never above 1 for either normalization; exactly 1 at the peak for the
 // unit-peak one; Regularize keeps it so; rho() estimates it.
-#include "pbrt_ext/bxdfs/fabric.h"
+#include "pbrt_ext/bxdfs/fabric_albedo.h"
 #include "pbrt_ext/util/rng.h"
-#include "pbrt_ext/util/spherequadrature.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -26,18 +24,8 @@ constexpr double kUnitPeakMinimum = 0.99;
 // rho() by 2^16 importance samples against quadrature: > 10 standard errors for every case here.
 constexpr double kRhoRelativeTolerance = 5e-3;
 
-// Integrate about the thread: the lobe is sharp only in the fiber latitude, with a cusp at
-// sin θi = -sin θo and a width of ~1/(n+1) in sin θi. Breakpoints there, geometrically spaced.
 double Albedo(const FabricBxDF &bxdf, Vector3f wo, int nPhi = 768) {
-    double cusp = -Dot(wo, bxdf.Thread()), width = 1 / (bxdf.Exponent() + 1);
-    std::vector<double> breaks;
-    for (double d = width / 64; d < 2; d *= 2) {
-        breaks.push_back(cusp - d);
-        breaks.push_back(cusp + d);
-    }
-    breaks.push_back(cusp);
-    std::sort(breaks.begin(), breaks.end());
-    return DirectionalAlbedo(bxdf, wo, Frame::FromZ(bxdf.Thread()), breaks, 12, nPhi);
+    return FabricDirectionalAlbedo(bxdf, wo, nPhi);
 }
 
 Vector3f FromPolarAzimuth(Float polarDegrees, Float azimuthDegrees) {

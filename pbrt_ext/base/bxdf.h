@@ -149,18 +149,36 @@ struct BSDFSample {
 // one line). Both sample with the BxDF's own Sample_f, so the estimate is exact for a BxDF whose
 // sampling is perfectly proportional to f |cos|, and they use as many samples as uc holds.
 
+// Sums sample values in double: a float running sum of 1e6 terms drifts by ~1 %.
+class RhoAccumulator {
+  public:
+    PBRT_CPU_GPU void Add(const SampledSpectrum &v) {
+        for (int c = 0; c < NSpectrumSamples; ++c)
+            sum[c] += v[c];
+    }
+    PBRT_CPU_GPU SampledSpectrum Mean(double count) const {
+        SampledSpectrum r;
+        for (int c = 0; c < NSpectrumSamples; ++c)
+            r[c] = Float(sum[c] / count);
+        return r;
+    }
+
+  private:
+    double sum[NSpectrumSamples] = {};
+};
+
 // Hemispherical-directional reflectance rho(wo) = integral of f(wo, wi) |cos theta_i| dwi.
 template <typename BxDF>
 PBRT_CPU_GPU SampledSpectrum EstimateRho(const BxDF &bxdf, Vector3f wo, pstd::span<const Float> uc,
                                          pstd::span<const Point2f> u2) {
     if (uc.empty()) return SampledSpectrum(0.f);
-    SampledSpectrum r(0.f);
+    RhoAccumulator r;
     for (std::size_t i = 0; i < uc.size(); ++i) {
         pstd::optional<BSDFSample> bs =
             bxdf.Sample_f(wo, uc[i], u2[i], TransportMode::Radiance, BxDFReflTransFlags::All);
-        if (bs && bs->pdf > 0) r += bs->f * AbsCosTheta(bs->wi) / bs->pdf;
+        if (bs && bs->pdf > 0) r.Add(bs->f * AbsCosTheta(bs->wi) / bs->pdf);
     }
-    return r / Float(uc.size());
+    return r.Mean(double(uc.size()));
 }
 
 // Hemispherical-hemispherical reflectance: rho(wo) averaged over wo with weight |cos theta_o| / pi.
@@ -169,16 +187,16 @@ template <typename BxDF>
 PBRT_CPU_GPU SampledSpectrum EstimateRho(const BxDF &bxdf, pstd::span<const Point2f> u1,
                                          pstd::span<const Float> uc, pstd::span<const Point2f> u2) {
     if (uc.empty()) return SampledSpectrum(0.f);
-    SampledSpectrum r(0.f);
+    RhoAccumulator r;
     for (std::size_t i = 0; i < uc.size(); ++i) {
         Vector3f wo = SampleUniformHemisphere(u1[i]);
         if (wo.z == 0) continue;
         Float pdfo = UniformHemispherePDF();
         pstd::optional<BSDFSample> bs =
             bxdf.Sample_f(wo, uc[i], u2[i], TransportMode::Radiance, BxDFReflTransFlags::All);
-        if (bs && bs->pdf > 0) r += bs->f * AbsCosTheta(bs->wi) * AbsCosTheta(wo) / (pdfo * bs->pdf);
+        if (bs && bs->pdf > 0) r.Add(bs->f * AbsCosTheta(bs->wi) * AbsCosTheta(wo) / (pdfo * bs->pdf));
     }
-    return r / (Pi * Float(uc.size()));
+    return r.Mean(Pi * double(uc.size()));
 }
 
 }  // namespace pbrt
