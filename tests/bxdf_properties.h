@@ -230,35 +230,4 @@ PropertyResult CheckFiniteNonNegative(const BxDF &bxdf, Vector3f wo,
     return result;
 }
 
-// Directional albedo ∫ f(wo, wi) |cos theta_i| d(omega_i) over the whole sphere (so
-// reflection plus transmission), by Gauss-Legendre in cos theta on each hemisphere and
-// the midpoint rule in phi. Peaked lobes need large nCosTheta / nPhi.
-template <typename BxDF>
-SampledSpectrum AlbedoQuadrature(const BxDF &bxdf, Vector3f wo, int nCosTheta, int nPhi,
-                                 TransportMode mode = TransportMode::Radiance) {
-    double sum[NSpectrumSamples] = {};
-    ForEachSphereQuadratureNode(nCosTheta, nPhi, [&](Vector3f wi, double weight) {
-        SampledSpectrum f = bxdf.f(wo, wi, mode);
-        for (int c = 0; c < NSpectrumSamples; ++c)
-            sum[c] += weight * f[c] * std::abs(wi.z);
-    });
-    SampledSpectrum albedo(0.f);
-    for (int c = 0; c < NSpectrumSamples; ++c)
-        albedo[c] = Float(sum[c]);
-    return albedo;
-}
-
-// ∫ PDF(wo, wi) d(omega_i) over the sphere, by the same rule as AlbedoQuadrature. It is 1
-// for a sampler that never declines, less for one that may.
-template <typename BxDF>
-double IntegratePdf(const BxDF &bxdf, Vector3f wo, int nCosTheta, int nPhi,
-                    TransportMode mode = TransportMode::Radiance,
-                    BxDFReflTransFlags sampleFlags = BxDFReflTransFlags::All) {
-    double sum = 0;
-    ForEachSphereQuadratureNode(nCosTheta, nPhi, [&](Vector3f wi, double weight) {
-        sum += weight * bxdf.PDF(wo, wi, mode, sampleFlags);
-    });
-    return sum;
-}
-
 }  // namespace pbrt

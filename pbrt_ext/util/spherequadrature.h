@@ -1,8 +1,9 @@
 // Deterministic integration over the unit sphere, for furnace tables and tests (host only).
 //
-// Gauss-Legendre in z = cos(polar angle) about a chosen axis times the midpoint rule in azimuth. Choosing
-// the axis along a lobe's axis of symmetry (a fabric thread) makes the sharp direction of the integrand
-// the Gauss-Legendre one; kinks across the azimuth (a horizon) then converge as O(1/nPhi²).
+// Gauss-Legendre in z = cos(polar angle) about a chosen axis, split at breakpoints, times the midpoint
+// rule in azimuth. Choosing the axis along a lobe's axis of symmetry (a fabric thread) makes the sharp
+// direction of the integrand the Gauss-Legendre one; kinks across the azimuth (a horizon) then
+// converge as O(1/nPhi²).
 #pragma once
 
 #include "pbrt_ext/base/bxdf.h"
@@ -42,11 +43,13 @@ inline std::vector<std::pair<double, double>> GaussLegendre(int n) {
     return rule;
 }
 
-// ∫_{S²} g(w) dω: Gauss-Legendre with nZ nodes in z = Dot(w, frame.z) on each interval between the
-// sorted breakpoints zBreaks (where the integrand has a kink or a sharp peak), nPhi azimuths.
-template <typename Integrand>
-double IntegrateSphere(Integrand g, const Frame &frame, const std::vector<double> &zBreaks, int nZ,
-                       int nPhi) {
+// Calls visit(w, weight) for the nodes of a product rule over the sphere: Gauss-Legendre with nZ
+// nodes in z = Dot(w, frame.z) on each interval between the sorted breakpoints zBreaks (where the
+// integrand has a kink, a jump or a sharp peak), times the midpoint rule with nPhi azimuths.
+// The weights sum to 4π.
+template <typename Visit>
+void ForEachSphereNode(const Frame &frame, const std::vector<double> &zBreaks, int nZ, int nPhi,
+                       Visit visit) {
     const double twoPi = 2 * 3.14159265358979323846;
     std::vector<double> edges{-1};
     for (double z : zBreaks)
@@ -54,19 +57,27 @@ double IntegrateSphere(Integrand g, const Frame &frame, const std::vector<double
             edges.push_back(z);
     edges.push_back(1);
     auto rule = GaussLegendre(nZ);
-    double sum = 0;
     for (size_t k = 0; k + 1 < edges.size(); ++k) {
         double half = (edges[k + 1] - edges[k]) / 2, mid = (edges[k + 1] + edges[k]) / 2;
         for (auto [x, wx] : rule) {
-            double z = mid + half * x, r = std::sqrt(std::max(0.0, 1 - z * z)), row = 0;
+            double z = mid + half * x, r = std::sqrt(std::max(0.0, 1 - z * z));
             for (int j = 0; j < nPhi; ++j) {
                 double phi = twoPi * (j + 0.5) / nPhi;
-                row += g(frame.FromLocal(
-                    Vector3f(Float(r * std::cos(phi)), Float(r * std::sin(phi)), Float(z))));
+                visit(frame.FromLocal(
+                          Vector3f(Float(r * std::cos(phi)), Float(r * std::sin(phi)), Float(z))),
+                      half * wx * twoPi / nPhi);
             }
-            sum += half * wx * row * (twoPi / nPhi);
         }
     }
+}
+
+// ∫_{S²} g(w) dω by ForEachSphereNode's rule.
+template <typename Integrand>
+double IntegrateSphere(Integrand g, const Frame &frame, const std::vector<double> &zBreaks, int nZ,
+                       int nPhi) {
+    double sum = 0;
+    ForEachSphereNode(frame, zBreaks, nZ, nPhi,
+                      [&](Vector3f w, double weight) { sum += weight * g(w); });
     return sum;
 }
 
