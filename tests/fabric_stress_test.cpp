@@ -128,8 +128,10 @@ TEST(FabricStress, NoNaNInfOrNegativeOutputForAdversarialInputs) {
             ASSERT_TRUE(Valid(bs->f) && Valid(bs->pdf) && bs->pdf > 0) << bxdf.ToString();
             ASSERT_TRUE(std::isfinite(bs->wi.x) && std::isfinite(bs->wi.y) &&
                         std::isfinite(bs->wi.z));
-            // Reflection only: the sample lies on wo's side of the surface.
-            ASSERT_GT(bs->wi.z * wo.z, 0) << bxdf.ToString();
+            // Reflection only: the sample lies strictly on wo's side of the surface, and PDF()
+            // agrees that it can be produced.
+            ASSERT_TRUE((wo.z > 0 && bs->wi.z > 0) || (wo.z < 0 && bs->wi.z < 0)) << bxdf.ToString();
+            ASSERT_GT(bxdf.PDF(wo, bs->wi, TransportMode::Radiance), 0) << bxdf.ToString();
         }
     }
     EXPECT_GE(calls, 10'000'000);

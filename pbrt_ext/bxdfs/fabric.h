@@ -193,9 +193,16 @@ class FabricBxDF {
     PBRT_CPU_GPU Float Lobe(const HalfAngle &h) const;
 
     // Densities of the lobe samplers, for directions above the surface.
-    PBRT_CPU_GPU Float FiberLobePDF(Vector3f wo, Vector3f wi, bool truncated) const;
+    PBRT_CPU_GPU Float FiberLobePDF(const HalfAngle &h, Float S, Vector3f wi, bool truncated) const;
+    // The density of the configured sampler at wi (both directions above the surface), given the
+    // fiber coordinates h and lobe value S that f() also needs: Sample_f computes them once.
+    PBRT_CPU_GPU Float SamplerPDF(const HalfAngle &h, Float S, Vector3f wi) const;
     PBRT_CPU_GPU pstd::optional<Vector3f> SampleFiberLobe(Vector3f wo, Float uc, Point2f u,
                                                           bool truncated) const;
+    // By sign, not by the product wo.z * wi.z, which underflows to 0 for tiny (denormal) heights.
+    PBRT_CPU_GPU static bool OnSameSide(Vector3f wo, Vector3f wi) {
+        return (wo.z > 0 && wi.z > 0) || (wo.z < 0 && wi.z < 0);
+    }
     PBRT_CPU_GPU bool UsesCosineMixture() const {
         return sampling == FabricSampling::Best && n <= 2;
     }
@@ -292,7 +299,7 @@ PBRT_CPU_GPU inline Float FabricBxDF::Lobe(const HalfAngle &h) const {
 
 PBRT_CPU_GPU inline SampledSpectrum FabricBxDF::f(Vector3f wo, Vector3f wi, TransportMode) const {
     // S is symmetric in wo and wi, so both transport modes see the same f.
-    if (!(wo.z * wi.z > 0))
+    if (!OnSameSide(wo, wi))
         return SampledSpectrum(0.f);
     if (wo.z < 0) {
         wo.z = -wo.z;
@@ -362,12 +369,12 @@ struct FabricArc {
 };
 
 // The samplers' density of wi: p(θh) · p(φ | θi) / (2 cos θi), since dωi = 2 cos θi dθh dφ.
-PBRT_CPU_GPU inline Float FabricBxDF::FiberLobePDF(Vector3f wo, Vector3f wi, bool truncated) const {
-    HalfAngle h = Fiber(wo, wi);
+PBRT_CPU_GPU inline Float FabricBxDF::FiberLobePDF(const HalfAngle &h, Float S, Vector3f wi,
+                                                   bool truncated) const {
     if (h.cosThetaI == 0)
         return 0;  // wi = ±T exactly: a point of integrable infinite density
     Float Z = truncated ? FabricTruncate(h.sinThetaO, h.cosThetaO, n).Z() : Float(1);
-    Float pThetaH = (n + 1) / (2 * Z) * Lobe(h) * h.cosThetaH;
+    Float pThetaH = (n + 1) / (2 * Z) * S * h.cosThetaH;
     FabricArc arc(h.sinThetaI, h.cosThetaI, T.z, Np.z);
     if (arc.psiMax == 0)
         return 0;
@@ -426,7 +433,7 @@ PBRT_CPU_GPU inline pstd::optional<Vector3f> FabricBxDF::SampleFiberLobe(Vector3
 }
 
 PBRT_CPU_GPU inline pstd::optional<BSDFSample> FabricBxDF::Sample_f(
-    Vector3f wo, Float uc, Point2f u, TransportMode mode, BxDFReflTransFlags sampleFlags) const {
+    Vector3f wo, Float uc, Point2f u, TransportMode, BxDFReflTransFlags sampleFlags) const {
     if (!(sampleFlags & BxDFReflTransFlags::Reflection) || !(wo.z != 0))
         return {};
     bool flip = wo.z < 0;
@@ -453,24 +460,17 @@ PBRT_CPU_GPU inline pstd::optional<BSDFSample> FabricBxDF::Sample_f(
     }
     if (!wi || !(wi->z > 0))
         return {};
-    if (flip) {
-        wo.z = -wo.z;
-        wi->z = -wi->z;
-    }
-    Float pdf = PDF(wo, *wi, mode, sampleFlags);
-    if (!(pdf > 0) || !IsFinite(pdf))
+    // f and pdf exactly as f() and PDF() compute them at this direction, sharing their work.
+    HalfAngle h = Fiber(wo, *wi);
+    Float S = Lobe(h), pdf = SamplerPDF(h, S, *wi);
+    if (!(pdf > 0))
         return {};
-    return BSDFSample(f(wo, *wi, mode), *wi, pdf, Flags());
+    if (flip)
+        wi->z = -wi->z;
+    return BSDFSample(color * (scale * S), *wi, pdf, Flags());
 }
 
-PBRT_CPU_GPU inline Float FabricBxDF::PDF(Vector3f wo, Vector3f wi, TransportMode,
-                                          BxDFReflTransFlags sampleFlags) const {
-    if (!(sampleFlags & BxDFReflTransFlags::Reflection) || !(wo.z * wi.z > 0))
-        return 0;
-    if (wo.z < 0) {
-        wo.z = -wo.z;
-        wi.z = -wi.z;
-    }
+PBRT_CPU_GPU inline Float FabricBxDF::SamplerPDF(const HalfAngle &h, Float S, Vector3f wi) const {
     Float pdf = 0;
     switch (sampling) {
     case FabricSampling::Uniform:
@@ -480,16 +480,29 @@ PBRT_CPU_GPU inline Float FabricBxDF::PDF(Vector3f wo, Vector3f wi, TransportMod
         pdf = CosineHemispherePDF(wi.z);
         break;
     case FabricSampling::Paper:
-        pdf = FiberLobePDF(wo, wi, false);
+        pdf = FiberLobePDF(h, S, wi, false);
         break;
     case FabricSampling::TruncatedSinPhi:
     case FabricSampling::Best:
-        pdf = FiberLobePDF(wo, wi, true);
+        pdf = FiberLobePDF(h, S, wi, true);
         if (UsesCosineMixture())
             pdf = (pdf + CosineHemispherePDF(wi.z)) / 2;
         break;
     }
     return IsFinite(pdf) ? pdf : Float(0);
+}
+
+PBRT_CPU_GPU inline Float FabricBxDF::PDF(Vector3f wo, Vector3f wi, TransportMode,
+                                          BxDFReflTransFlags sampleFlags) const {
+    if (!(sampleFlags & BxDFReflTransFlags::Reflection) || !OnSameSide(wo, wi))
+        return 0;
+    if (wo.z < 0) {
+        wo.z = -wo.z;
+        wi.z = -wi.z;
+    }
+    HalfAngle h = Fiber(wo, wi);
+    bool needsLobe = sampling != FabricSampling::Uniform && sampling != FabricSampling::Cosine;
+    return SamplerPDF(h, needsLobe ? Lobe(h) : Float(0), wi);
 }
 
 // e^-z I0(z) for z >= 0 (Abramowitz & Stegun 9.8.1 and 9.8.2, relative error < 5e-7).
