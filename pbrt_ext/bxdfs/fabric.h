@@ -294,7 +294,7 @@ PBRT_CPU_GPU inline FabricBxDF::HalfAngle FabricBxDF::Fiber(Vector3f wo, Vector3
 // digit as |sin θh| -> 1. Small integer exponents (the paper's mapping) use exact repeated squaring.
 PBRT_CPU_GPU inline Float FabricBxDF::Lobe(const HalfAngle &h) const {
     Float base = Sqr(h.cosThetaH) / (1 + std::abs(h.sinThetaH));
-    return integerN >= 0 ? IntPow(base, integerN) : SafePow(base, n);
+    return integerN >= 0 ? IntPow(base, integerN) : std::pow(base, n);
 }
 
 PBRT_CPU_GPU inline SampledSpectrum FabricBxDF::f(Vector3f wo, Vector3f wi, TransportMode) const {
@@ -324,7 +324,7 @@ PBRT_CPU_GPU inline FabricTruncation FabricTruncate(Float sinThetaO, Float cosTh
     // 1 - √x = (1 - x) / (1 + √x)
     Float tPlus = (oneMinus / 2) / (1 + std::sqrt(onePlus / 2));
     Float tMinus = (onePlus / 2) / (1 + std::sqrt(oneMinus / 2));
-    return {SafePow(tPlus, n + 1), SafePow(tMinus, n + 1)};
+    return {std::pow(tPlus, n + 1), std::pow(tMinus, n + 1)};
 }
 
 // The azimuth about T of directions above the surface at latitude θi. With ψ = φ - π/2,
