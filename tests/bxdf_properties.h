@@ -230,4 +230,22 @@ PropertyResult CheckFiniteNonNegative(const BxDF &bxdf, Vector3f wo,
     return result;
 }
 
+// Uniform random inputs for the rho() estimators: uc, u1 and u2 spans of one length.
+struct RhoSamples {
+    std::vector<Float> uc;
+    std::vector<Point2f> u1, u2;
+};
+
+inline RhoSamples MakeRhoSamples(int count, uint64_t seed) {
+    RhoSamples s{std::vector<Float>(count), std::vector<Point2f>(count),
+                 std::vector<Point2f>(count)};
+    RNG rng(seed);
+    for (int i = 0; i < count; ++i) {
+        s.uc[i] = rng.Uniform<Float>();
+        s.u1[i] = Point2f(rng.Uniform<Float>(), rng.Uniform<Float>());
+        s.u2[i] = Point2f(rng.Uniform<Float>(), rng.Uniform<Float>());
+    }
+    return s;
+}
+
 }  // namespace pbrt

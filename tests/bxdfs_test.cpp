@@ -93,19 +93,12 @@ TEST(ConductorBxDF, AlbedoNeverExceedsOne) {
 }
 
 TEST(ConductorBxDF, RhoAgreesWithQuadrature) {
-    constexpr int kSamples = 1 << 16;
-    std::vector<Float> uc(kSamples);
-    std::vector<Point2f> u2(kSamples);
-    RNG rng(5);
-    for (int i = 0; i < kSamples; ++i) {
-        uc[i] = rng.Uniform<Float>();
-        u2[i] = Point2f(rng.Uniform<Float>(), rng.Uniform<Float>());
-    }
+    RhoSamples in = MakeRhoSamples(1 << 16, 5);
     ConductorBxDF bxdf = Conductor(0.4f, 0.4f);
     for (Vector3f wo : Outgoing()) {
         double expected = Albedo(bxdf, wo, 0);
         // Visible-normal sampling: weight F·G1-ratio <= 1, so 2^16 samples give < 0.5 % error.
-        EXPECT_NEAR(bxdf.rho(wo, uc, u2)[0], expected, 0.01 * expected);
+        EXPECT_NEAR(bxdf.rho(wo, in.uc, in.u2)[0], expected, 0.01 * expected);
     }
 }
 

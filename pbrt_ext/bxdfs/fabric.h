@@ -199,6 +199,13 @@ class FabricBxDF {
     PBRT_CPU_GPU Float SamplerPDF(const HalfAngle &h, Float S, Vector3f wi) const;
     PBRT_CPU_GPU pstd::optional<Vector3f> SampleFiberLobe(Vector3f wo, Float uc, Point2f u,
                                                           bool truncated) const;
+    // The lobe is two-sided: below the surface, both directions are mirrored through it.
+    PBRT_CPU_GPU static void MirrorToUpperSide(Vector3f &wo, Vector3f &wi) {
+        if (wo.z < 0) {
+            wo.z = -wo.z;
+            wi.z = -wi.z;
+        }
+    }
     // By sign, not by the product wo.z * wi.z, which underflows to 0 for tiny (denormal) heights.
     PBRT_CPU_GPU static bool OnSameSide(Vector3f wo, Vector3f wi) {
         return (wo.z > 0 && wi.z > 0) || (wo.z < 0 && wi.z < 0);
@@ -301,10 +308,7 @@ PBRT_CPU_GPU inline SampledSpectrum FabricBxDF::f(Vector3f wo, Vector3f wi, Tran
     // S is symmetric in wo and wi, so both transport modes see the same f.
     if (!OnSameSide(wo, wi))
         return SampledSpectrum(0.f);
-    if (wo.z < 0) {
-        wo.z = -wo.z;
-        wi.z = -wi.z;
-    }
+    MirrorToUpperSide(wo, wi);
     return color * (scale * Lobe(Fiber(wo, wi)));
 }
 
@@ -496,10 +500,7 @@ PBRT_CPU_GPU inline Float FabricBxDF::PDF(Vector3f wo, Vector3f wi, TransportMod
                                           BxDFReflTransFlags sampleFlags) const {
     if (!(sampleFlags & BxDFReflTransFlags::Reflection) || !OnSameSide(wo, wi))
         return 0;
-    if (wo.z < 0) {
-        wo.z = -wo.z;
-        wi.z = -wi.z;
-    }
+    MirrorToUpperSide(wo, wi);
     HalfAngle h = Fiber(wo, wi);
     bool needsLobe = sampling != FabricSampling::Uniform && sampling != FabricSampling::Cosine;
     return SamplerPDF(h, needsLobe ? Lobe(h) : Float(0), wi);
