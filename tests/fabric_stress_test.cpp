@@ -61,7 +61,8 @@ class AdversarialInputs {
 
     FabricBxDF BxDF() {
         Vector3f thread = ThreadFor(rng.Uniform<uint32_t>() % 6);
-        SampledSpectrum color(U() < 0.1f ? 0.f : U());
+        // Zero, ordinary and (invalid, clamped to zero) negative colors.
+        SampledSpectrum color(U() < 0.1f ? 0.f : U() < 0.1f ? -U() : U());
         FabricSampling sampling = kSamplers[rng.Uniform<uint32_t>() % 5];
         FabricNormalization norm =
             U() < 0.5f ? FabricNormalization::Paper : FabricNormalization::UnitPeak;

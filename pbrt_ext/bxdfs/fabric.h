@@ -59,8 +59,8 @@ struct FabricExponent {
 
 class FabricBxDF {
   public:
-    // Exponent from roughness with the paper's integer mapping n = ceil(1 + 29 (1 - r)²).
     FabricBxDF() = default;
+    // Exponent from roughness with the paper's integer mapping n = ceil(1 + 29 (1 - r)²).
     PBRT_CPU_GPU FabricBxDF(SampledSpectrum color, Float roughness, Vector3f thread,
                             FabricSampling sampling = FabricSampling::Best,
                             FabricNormalization normalization = FabricNormalization::Paper)
@@ -69,7 +69,7 @@ class FabricBxDF {
     PBRT_CPU_GPU FabricBxDF(SampledSpectrum color, FabricExponent exponent, Vector3f thread,
                             FabricSampling sampling = FabricSampling::Best,
                             FabricNormalization normalization = FabricNormalization::Paper)
-        : color(color), sampling(sampling), normalization(normalization) {
+        : color(ClampZero(color)), sampling(sampling), normalization(normalization) {
         SetFiberFrame(thread);
         SetExponent(exponent.n);
     }
