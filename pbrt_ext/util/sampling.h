@@ -133,3 +133,194 @@ PBRT_CPU_GPU inline Float PowerHeuristic(int nf, Float fPdf, int ng, Float gPdf)
 }
 
 }  // namespace pbrt
+
+// ---------------------------------------------------------------------------------------
+// Cone and triangle warps, and tabulated distributions (added for lights, shapes, filters).
+// These parts need <array> and <vector>; the includes sit here so the original header's
+// prologue stays untouched.
+
+#include <pbrt_ext/util/bounds.h>
+#include <pbrt_ext/util/pstd.h>
+
+#include <array>
+#include <vector>
+
+namespace pbrt {
+
+// Uniform over the cone of directions within theta_max of +z: cos theta is uniform in
+// [cosThetaMax, 1], which makes solid angle uniform for the same reason as on the sphere.
+PBRT_CPU_GPU inline Vector3f SampleUniformCone(Point2f u, Float cosThetaMax) {
+    Float cosTheta = (1 - u[0]) + u[0] * cosThetaMax;
+    Float sinTheta = SafeSqrt(1 - Sqr(cosTheta));
+    Float phi = u[1] * 2 * Pi;
+    return SphericalDirection(sinTheta, cosTheta, phi);
+}
+PBRT_CPU_GPU inline Float UniformConePDF(Float cosThetaMax) {
+    return 1 / (2 * Pi * (1 - cosThetaMax));
+}
+PBRT_CPU_GPU inline Point2f InvertUniformConeSample(Vector3f w, Float cosThetaMax) {
+    return Point2f((1 - w.z) / (1 - cosThetaMax), detail::Azimuth(w.x, w.y) * Inv2Pi);
+}
+
+// Barycentrics uniform over a triangle. The map folds the unit square onto the triangle
+// along its diagonal without the square root of the classic warp, so neighbouring u stay
+// neighbours (pbrt-v4, after Heitz's "A low-distortion map between triangle and square").
+PBRT_CPU_GPU inline std::array<Float, 3> SampleUniformTriangle(Point2f u) {
+    Float b0, b1;
+    if (u[0] < u[1]) {
+        b0 = u[0] / 2;
+        b1 = u[1] - b0;
+    } else {
+        b1 = u[1] / 2;
+        b0 = u[0] - b1;
+    }
+    return {b0, b1, 1 - b0 - b1};
+}
+// The two halves of the square meet where b0 = b1; each branch above is linear, so it
+// inverts directly.
+PBRT_CPU_GPU inline Point2f InvertUniformTriangleSample(const std::array<Float, 3> &b) {
+    if (b[0] > b[1])
+        return Point2f(b[0] + b[1], 2 * b[1]);
+    return Point2f(2 * b[0], b[1] + b[0]);
+}
+
+// The largest index i in [0, size - 2] with pred(i) true, for a predicate that is true
+// up to some index and false after it (pbrt-v4's FindInterval): a bisection that clamps,
+// so callers can index i and i + 1 even when u is outside the tabulated range.
+namespace detail {
+template <typename Predicate>
+PBRT_CPU_GPU inline int FindInterval(int size, const Predicate &pred) {
+    int first = 1, count = size - 2;
+    while (count > 0) {
+        int half = count >> 1, middle = first + half;
+        if (pred(middle)) {
+            first = middle + 1;
+            count -= half + 1;
+        } else {
+            count = half;
+        }
+    }
+    return Clamp(first - 1, 0, size - 2);
+}
+}  // namespace detail
+
+// A piecewise-constant density on [min, max] proportional to |f| over n equal pieces
+// (pbrt-v4's PiecewiseConstant1D). Sampling inverts the tabulated CDF, so it is exact and
+// has an exact inverse. A function that is zero everywhere samples uniformly with pdf 0.
+// f must not be empty.
+// The tables live on the heap, so this and PiecewiseConstant2D are host types (pbrt-v4
+// places them in device memory through its Allocator; this project has no GPU back end).
+class PiecewiseConstant1D {
+  public:
+    PiecewiseConstant1D() = default;
+    explicit PiecewiseConstant1D(pstd::span<const Float> f) : PiecewiseConstant1D(f, 0, 1) {}
+    PiecewiseConstant1D(pstd::span<const Float> f, Float min, Float max)
+        : func(f.begin(), f.end()), cdf(f.size() + 1), min(min), max(max) {
+        // Negative values (a signed filter) are sampled by magnitude; callers weight by sign.
+        for (Float &v : func)
+            v = std::abs(v);
+        size_t n = func.size();
+        cdf[0] = 0;
+        for (size_t i = 1; i <= n; ++i)
+            cdf[i] = cdf[i - 1] + func[i - 1] * (max - min) / n;
+        funcInt = cdf[n];
+        for (size_t i = 1; i <= n; ++i)
+            cdf[i] = funcInt > 0 ? cdf[i] / funcInt : Float(i) / Float(n);
+    }
+
+    Float Integral() const { return funcInt; }
+    size_t size() const { return func.size(); }
+
+    // x in [min, max]; *pdf is the density per unit x, *offset the piece x lies in.
+    Float Sample(Float u, Float *pdf = nullptr, int *offset = nullptr) const {
+        int o = detail::FindInterval(int(cdf.size()), [&](int i) { return cdf[i] <= u; });
+        if (offset)
+            *offset = o;
+        Float du = u - cdf[o];
+        if (cdf[o + 1] - cdf[o] > 0)
+            du /= cdf[o + 1] - cdf[o];
+        if (pdf)
+            *pdf = funcInt > 0 ? func[o] / funcInt : 0;
+        return Lerp((o + du) / size(), min, max);
+    }
+
+    // The u that Sample maps to x; empty outside [min, max].
+    pstd::optional<Float> Invert(Float x) const {
+        if (!(x >= min && x <= max))
+            return {};
+        Float c = (x - min) / (max - min) * func.size();
+        int offset = Clamp(int(c), 0, int(func.size()) - 1);
+        return Lerp(c - offset, cdf[offset], cdf[offset + 1]);
+    }
+
+    std::vector<Float> func, cdf;  // |f|, and the CDF normalized to end at 1
+    Float min = 0, max = 1;
+    Float funcInt = 0;  // integral of |f| over [min, max]
+};
+
+// A piecewise-constant density over a rectangle, proportional to |f| on an nu x nv grid
+// (f row-major: f[v * nu + u]); pbrt-v4's PiecewiseConstant2D. The second coordinate is
+// drawn from the marginal over rows and the first from that row's conditional, so Sample
+// is a bijection with Invert as its inverse and its density is exactly PDF.
+class PiecewiseConstant2D {
+  public:
+    PiecewiseConstant2D() = default;
+    PiecewiseConstant2D(pstd::span<const Float> f, int nu, int nv,
+                        Bounds2f domain = Bounds2f(Point2f(0, 0), Point2f(1, 1)))
+        : domain(domain) {
+        pConditionalV.reserve(nv);
+        for (int v = 0; v < nv; ++v)
+            pConditionalV.emplace_back(f.subspan(size_t(v) * nu, nu), domain.pMin[0],
+                                       domain.pMax[0]);
+        std::vector<Float> marginalFunc(nv);
+        for (int v = 0; v < nv; ++v)
+            marginalFunc[v] = pConditionalV[v].Integral();
+        pMarginal = PiecewiseConstant1D(marginalFunc, domain.pMin[1], domain.pMax[1]);
+    }
+
+    Float Integral() const { return pMarginal.Integral(); }
+    int ResolutionU() const { return int(pConditionalV[0].size()); }
+    int ResolutionV() const { return int(pMarginal.size()); }
+    Bounds2f Domain() const { return domain; }
+
+    // *pdf is the density per unit area of the domain; *offset the grid cell.
+    Point2f Sample(Point2f u, Float *pdf = nullptr, Point2i *offset = nullptr) const {
+        Float pdfs[2];
+        int uv[2];
+        Float d1 = pMarginal.Sample(u[1], &pdfs[1], &uv[1]);
+        Float d0 = pConditionalV[uv[1]].Sample(u[0], &pdfs[0], &uv[0]);
+        if (pdf)
+            *pdf = pdfs[0] * pdfs[1];
+        if (offset)
+            *offset = Point2i(uv[0], uv[1]);
+        return Point2f(d0, d1);
+    }
+
+    // Density at p, which is clamped into the domain.
+    Float PDF(Point2f p) const {
+        Vector2f o = domain.Offset(p);
+        int iu = Clamp(int(o[0] * ResolutionU()), 0, ResolutionU() - 1);
+        int iv = Clamp(int(o[1] * ResolutionV()), 0, ResolutionV() - 1);
+        return Integral() > 0 ? pConditionalV[iv].func[iu] / Integral() : 0;
+    }
+
+    // The u that Sample maps to p; empty outside the domain.
+    pstd::optional<Point2f> Invert(Point2f p) const {
+        pstd::optional<Float> mInv = pMarginal.Invert(p[1]);
+        if (!mInv)
+            return {};
+        Float o1 = domain.Offset(p)[1];
+        int row = Clamp(int(o1 * ResolutionV()), 0, ResolutionV() - 1);
+        pstd::optional<Float> cInv = pConditionalV[row].Invert(p[0]);
+        if (!cInv)
+            return {};
+        return Point2f(*cInv, *mInv);
+    }
+
+  private:
+    Bounds2f domain;
+    std::vector<PiecewiseConstant1D> pConditionalV;
+    PiecewiseConstant1D pMarginal;
+};
+
+}  // namespace pbrt

@@ -250,4 +250,48 @@ class TrowbridgeReitzDistribution {
     Float alpha_x = 0, alpha_y = 0;
 };
 
+// ---------------------------------------------------------------------------------------
+// Scattering inside a layer (the medium between LayeredBxDF's interfaces; pbrt-v4 keeps
+// these in util/scattering.h, util/sampling.h and media.h).
+
+// The Henyey-Greenstein phase function. cosTheta is the cosine between wo and wi, which
+// both point away from the scattering point, so forward scattering (g > 0) peaks at
+// cosTheta = -1, as in pbrt-v4. Normalized over the sphere.
+PBRT_CPU_GPU inline Float HenyeyGreenstein(Float cosTheta, Float g) {
+    Float denom = 1 + Sqr(g) + 2 * g * cosTheta;
+    return Inv4Pi * (1 - Sqr(g)) / (denom * SafeSqrt(denom));
+}
+
+// Samples wi exactly from HenyeyGreenstein(Dot(wo, wi), g) and sets *pdf to that density.
+// The cosine mu between wi and the propagation direction -wo inverts the closed-form CDF;
+// near g = 0 that inversion divides by g, so the isotropic case is sampled directly.
+PBRT_CPU_GPU inline Vector3f SampleHenyeyGreenstein(Vector3f wo, Float g, Point2f u,
+                                                    Float *pdf) {
+    Float mu;
+    if (std::abs(g) < 1e-3f)
+        mu = 1 - 2 * u[0];
+    else
+        mu = (1 + Sqr(g) - Sqr((1 - Sqr(g)) / (1 - g + 2 * g * u[0]))) / (2 * g);
+    mu = Clamp(mu, -1, 1);
+    Float cosTheta = -mu;  // relative to wo
+    Float sinTheta = SafeSqrt(1 - Sqr(cosTheta));
+    Vector3f wi =
+        Frame::FromZ(wo).FromLocal(SphericalDirection(sinTheta, cosTheta, 2 * Pi * u[1]));
+    if (pdf)
+        *pdf = HenyeyGreenstein(cosTheta, g);
+    return wi;
+}
+
+// Distance to the next collision in a medium with attenuation coefficient a: density
+// a exp(-a x) on [0, inf).
+PBRT_CPU_GPU inline Float SampleExponential(Float u, Float a) {
+    return -std::log(1 - u) / a;
+}
+PBRT_CPU_GPU inline Float ExponentialPDF(Float x, Float a) {
+    return a * std::exp(-a * x);
+}
+PBRT_CPU_GPU inline Float InvertExponentialSample(Float x, Float a) {
+    return 1 - std::exp(-a * x);
+}
+
 }  // namespace pbrt

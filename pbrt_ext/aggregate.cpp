@@ -1,0 +1,415 @@
+// EmbreeAggregate: Embree 3 scenes for pbrt_ext's shapes.
+#include "pbrt_ext/aggregate.h"
+
+#include "pbrt_ext/util/log.h"
+
+#include <embree3/rtcore.h>
+
+#include <cassert>
+#include <cstdint>
+#include <deque>
+#include <stdexcept>
+#include <vector>
+
+namespace pbrt {
+
+namespace {
+
+const char *ErrorName(RTCError code) {
+    switch (code) {
+    case RTC_ERROR_NONE: return "no error";
+    case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+    case RTC_ERROR_CANCELLED: return "cancelled";
+    default: return "unknown error";
+    }
+}
+
+void ReportEmbreeError(void *, RTCError code, const char *message) {
+    Error("Embree: %s (%s)", message ? message : "", ErrorName(code));
+}
+
+// A shape's world box, padded so that float rounding in its transform cannot cut off a sliver
+// of the surface that the exact intersection routine would report.
+void SetBounds(const Bounds3f &b, RTCBounds *out) {
+    Vector3f pad = (b.pMax - b.pMin) * 1e-5f + Vector3f(1e-7f, 1e-7f, 1e-7f);
+    out->lower_x = b.pMin.x - pad.x;
+    out->lower_y = b.pMin.y - pad.y;
+    out->lower_z = b.pMin.z - pad.z;
+    out->upper_x = b.pMax.x + pad.x;
+    out->upper_y = b.pMax.y + pad.y;
+    out->upper_z = b.pMax.z + pad.z;
+}
+
+RTCRay ToEmbree(const Ray &ray, Float tMax) {
+    RTCRay r;
+    r.org_x = ray.o.x;
+    r.org_y = ray.o.y;
+    r.org_z = ray.o.z;
+    r.dir_x = ray.d.x;
+    r.dir_y = ray.d.y;
+    r.dir_z = ray.d.z;
+    r.tnear = 0;
+    r.tfar = tMax;
+    r.time = 0;
+    r.mask = ~0u;
+    r.id = 0;
+    r.flags = 0;
+    return r;
+}
+
+// Single-ray queries (rtcIntersect1/rtcOccluded1) call user geometry with N = 1.
+Ray RayFrom(const RTCRay &r) {
+    return Ray(Point3f(r.org_x, r.org_y, r.org_z), Vector3f(r.dir_x, r.dir_y, r.dir_z));
+}
+
+void RecordHit(RTCRayHit *rh, const RTCIntersectFunctionNArguments *args, Float t, Float u,
+               Float v, Point3f pObj) {
+    rh->ray.tfar = t;
+    rh->hit.u = u;
+    rh->hit.v = v;
+    // Ng is ours to use for user geometry: it carries a quadric's object-space hit point to
+    // Intersect, which rebuilds the interaction only for the closest hit.
+    rh->hit.Ng_x = pObj.x;
+    rh->hit.Ng_y = pObj.y;
+    rh->hit.Ng_z = pObj.z;
+    rh->hit.primID = args->primID;
+    rh->hit.geomID = args->geomID;
+    rh->hit.instID[0] = args->context->instID[0];
+}
+
+// Spheres and disks: one primitive per geometry.
+template <typename Quadric>
+struct QuadricCallbacks {
+    static void Bounds(const RTCBoundsFunctionArguments *args) {
+        SetBounds(static_cast<const Quadric *>(args->geometryUserPtr)->Bounds(), args->bounds_o);
+    }
+    static void Intersect(const RTCIntersectFunctionNArguments *args) {
+        assert(args->N == 1);
+        if (!args->valid[0])
+            return;
+        RTCRayHit *rh = reinterpret_cast<RTCRayHit *>(args->rayhit);
+        const Quadric *shape = static_cast<const Quadric *>(args->geometryUserPtr);
+        pstd::optional<QuadricIntersection> isect =
+            shape->BasicIntersect(RayFrom(rh->ray), rh->ray.tfar);
+        if (isect && isect->tHit >= rh->ray.tnear)
+            RecordHit(rh, args, isect->tHit, 0, 0, isect->pObj);
+    }
+    static void Occluded(const RTCOccludedFunctionNArguments *args) {
+        assert(args->N == 1);
+        if (!args->valid[0])
+            return;
+        RTCRay *ray = reinterpret_cast<RTCRay *>(args->ray);
+        const Quadric *shape = static_cast<const Quadric *>(args->geometryUserPtr);
+        pstd::optional<QuadricIntersection> isect = shape->BasicIntersect(RayFrom(*ray), ray->tfar);
+        if (isect && isect->tHit >= ray->tnear)
+            ray->tfar = -Infinity;  // Embree's mark for an occluded ray
+    }
+};
+
+struct PatchCallbacks {
+    static std::array<Point3f, 4> Corners(const void *meshPtr, unsigned primID) {
+        const BilinearPatchMesh *mesh = static_cast<const BilinearPatchMesh *>(meshPtr);
+        const int *v = &mesh->indices[4 * primID];
+        return {mesh->p[v[0]], mesh->p[v[1]], mesh->p[v[2]], mesh->p[v[3]]};
+    }
+    static void Bounds(const RTCBoundsFunctionArguments *args) {
+        auto [p00, p10, p01, p11] = Corners(args->geometryUserPtr, args->primID);
+        SetBounds(Union(Bounds3f(p00, p10), Bounds3f(p01, p11)), args->bounds_o);
+    }
+    static void Intersect(const RTCIntersectFunctionNArguments *args) {
+        assert(args->N == 1);
+        if (!args->valid[0])
+            return;
+        RTCRayHit *rh = reinterpret_cast<RTCRayHit *>(args->rayhit);
+        auto [p00, p10, p01, p11] = Corners(args->geometryUserPtr, args->primID);
+        pstd::optional<BilinearIntersection> hit =
+            IntersectBilinearPatch(RayFrom(rh->ray), rh->ray.tfar, p00, p10, p01, p11);
+        if (hit && hit->t >= rh->ray.tnear)
+            RecordHit(rh, args, hit->t, hit->uv[0], hit->uv[1], Point3f());
+    }
+    static void Occluded(const RTCOccludedFunctionNArguments *args) {
+        assert(args->N == 1);
+        if (!args->valid[0])
+            return;
+        RTCRay *ray = reinterpret_cast<RTCRay *>(args->ray);
+        auto [p00, p10, p01, p11] = Corners(args->geometryUserPtr, args->primID);
+        pstd::optional<BilinearIntersection> hit =
+            IntersectBilinearPatch(RayFrom(*ray), ray->tfar, p00, p10, p01, p11);
+        if (hit && hit->t >= ray->tnear)
+            ray->tfar = -Infinity;
+    }
+};
+
+enum class GeometryKind : uint8_t { Triangles, BilinearPatches, Sphere, Disk, Instance };
+
+// What a hit on geometry geomID of a scene needs, indexed by geomID.
+struct GeometryRecord {
+    GeometryKind kind;
+    const void *shape;  // TriangleMesh, BilinearPatchMesh, Sphere or Disk; unused for instances
+    PrimitiveAttributes attrs;
+    int instanceIndex = -1;  // Instance: into Impl::instances
+};
+
+struct SceneData {
+    RTCScene scene = nullptr;
+    std::vector<GeometryRecord> geometries;
+};
+
+struct InstanceData {
+    int objectId;
+    Transform worldFromInstance;
+};
+
+}  // namespace
+
+struct EmbreeAggregate::Impl {
+    RTCDevice device = nullptr;
+    SceneData world;
+    std::vector<SceneData> objects;
+    std::vector<std::string> objectNames;
+    std::vector<InstanceData> instances;
+    int openObject = -1;
+    bool committed = false;
+    // Stable addresses for Embree's user pointers.
+    std::deque<Sphere> spheres;
+    std::deque<Disk> disks;
+    std::vector<std::shared_ptr<const TriangleMesh>> triangleMeshes;
+    std::vector<std::shared_ptr<const BilinearPatchMesh>> patchMeshes;
+
+    Impl() {
+        device = rtcNewDevice(nullptr);
+        if (!device)
+            throw std::runtime_error(std::string("Embree: cannot create a device (") +
+                                     ErrorName(rtcGetDeviceError(nullptr)) + ")");
+        rtcSetDeviceErrorFunction(device, ReportEmbreeError, nullptr);
+        world.scene = NewScene();
+    }
+    ~Impl() {
+        for (SceneData &object : objects) rtcReleaseScene(object.scene);
+        rtcReleaseScene(world.scene);
+        rtcReleaseDevice(device);
+    }
+    Impl(const Impl &) = delete;
+    Impl &operator=(const Impl &) = delete;
+
+    // Robust traversal keeps triangle edges watertight, as pbrt-v4's intersection test is;
+    // high build quality (spatial splits) pays back over the many rays of a render.
+    RTCScene NewScene() const {
+        RTCScene scene = rtcNewScene(device);
+        rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+        return scene;
+    }
+
+    SceneData &Current() { return openObject >= 0 ? objects[openObject] : world; }
+
+    int Attach(RTCGeometry geom, GeometryRecord record) {
+        rtcCommitGeometry(geom);
+        SceneData &sd = Current();
+        unsigned id = unsigned(sd.geometries.size());
+        rtcAttachGeometryByID(sd.scene, geom, id);
+        rtcReleaseGeometry(geom);
+        if (openObject >= 0 && record.attrs.areaLightBase >= 0) {
+            Warning("object \"%s\": area lights in instanced objects are not supported; the "
+                    "emission is ignored",
+                    objectNames[openObject].c_str());
+            record.attrs.areaLightBase = -1;
+        }
+        sd.geometries.push_back(record);
+        return int(id);
+    }
+
+    template <typename Callbacks>
+    int AddUserGeometry(GeometryKind kind, const void *shape, unsigned count,
+                        PrimitiveAttributes attrs) {
+        RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+        rtcSetGeometryUserPrimitiveCount(geom, count);
+        rtcSetGeometryUserData(geom, const_cast<void *>(shape));
+        rtcSetGeometryBoundsFunction(geom, Callbacks::Bounds, nullptr);
+        rtcSetGeometryIntersectFunction(geom, Callbacks::Intersect);
+        rtcSetGeometryOccludedFunction(geom, Callbacks::Occluded);
+        return Attach(geom, {kind, shape, attrs});
+    }
+
+    void Check(const char *what) const {
+        RTCError code = rtcGetDeviceError(device);
+        if (code != RTC_ERROR_NONE)
+            throw std::runtime_error(std::string("Embree: ") + what + " failed (" +
+                                     ErrorName(code) + ")");
+    }
+
+    SurfaceInteraction Interaction(const GeometryRecord &g, const RTCRayHit &rh,
+                                   Vector3f wo) const {
+        const RTCHit &hit = rh.hit;
+        switch (g.kind) {
+        case GeometryKind::Triangles:
+            // Embree's barycentrics weight vertices 1 and 2.
+            return Triangle::InteractionFromIntersection(
+                static_cast<const TriangleMesh *>(g.shape), int(hit.primID),
+                {1 - hit.u - hit.v, hit.u, hit.v}, wo);
+        case GeometryKind::BilinearPatches:
+            return BilinearPatch::InteractionFromIntersection(
+                static_cast<const BilinearPatchMesh *>(g.shape), int(hit.primID),
+                Point2f(hit.u, hit.v), wo);
+        case GeometryKind::Sphere:
+            return static_cast<const Sphere *>(g.shape)->InteractionFromIntersection(
+                {rh.ray.tfar, Point3f(hit.Ng_x, hit.Ng_y, hit.Ng_z)}, wo);
+        case GeometryKind::Disk:
+            return static_cast<const Disk *>(g.shape)->InteractionFromIntersection(
+                {rh.ray.tfar, Point3f(hit.Ng_x, hit.Ng_y, hit.Ng_z)}, wo);
+        case GeometryKind::Instance:
+            break;
+        }
+        assert(false);
+        return {};
+    }
+};
+
+EmbreeAggregate::EmbreeAggregate() : impl(std::make_unique<Impl>()) {}
+EmbreeAggregate::~EmbreeAggregate() = default;
+EmbreeAggregate::EmbreeAggregate(EmbreeAggregate &&) noexcept = default;
+EmbreeAggregate &EmbreeAggregate::operator=(EmbreeAggregate &&) noexcept = default;
+
+int EmbreeAggregate::AddTriangleMesh(std::shared_ptr<const TriangleMesh> mesh,
+                                     PrimitiveAttributes attrs) {
+    RTCGeometry geom = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    // Embree reads vertex buffers with 16-byte loads past the last vertex; its own buffer has
+    // the padding that a std::vector need not have. Indices are shared as they are.
+    size_t nVertices = mesh->p.size();
+    float *vertices = static_cast<float *>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nVertices));
+    for (size_t i = 0; i < nVertices; ++i)
+        for (int c = 0; c < 3; ++c) vertices[3 * i + c] = mesh->p[i][c];
+    static_assert(sizeof(int) == sizeof(unsigned));
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                               mesh->indices.data(), 0, 3 * sizeof(unsigned),
+                               size_t(mesh->NumTriangles()));
+    impl->triangleMeshes.push_back(mesh);
+    return impl->Attach(geom, {GeometryKind::Triangles, mesh.get(), attrs});
+}
+
+int EmbreeAggregate::AddBilinearPatchMesh(std::shared_ptr<const BilinearPatchMesh> mesh,
+                                          PrimitiveAttributes attrs) {
+    impl->patchMeshes.push_back(mesh);
+    return impl->AddUserGeometry<PatchCallbacks>(GeometryKind::BilinearPatches, mesh.get(),
+                                                 unsigned(mesh->NumPatches()), attrs);
+}
+
+int EmbreeAggregate::AddSphere(const Sphere &sphere, PrimitiveAttributes attrs) {
+    impl->spheres.push_back(sphere);
+    return impl->AddUserGeometry<QuadricCallbacks<Sphere>>(GeometryKind::Sphere,
+                                                           &impl->spheres.back(), 1, attrs);
+}
+
+int EmbreeAggregate::AddDisk(const Disk &disk, PrimitiveAttributes attrs) {
+    impl->disks.push_back(disk);
+    return impl->AddUserGeometry<QuadricCallbacks<Disk>>(GeometryKind::Disk,
+                                                         &impl->disks.back(), 1, attrs);
+}
+
+int EmbreeAggregate::BeginObject(const std::string &name) {
+    if (impl->openObject >= 0)
+        throw std::runtime_error("object \"" + name + "\" begins inside object \"" +
+                                 impl->objectNames[impl->openObject] + "\"");
+    impl->objects.push_back({impl->NewScene(), {}});
+    impl->objectNames.push_back(name);
+    impl->openObject = int(impl->objects.size()) - 1;
+    return impl->openObject;
+}
+
+void EmbreeAggregate::EndObject() {
+    if (impl->openObject < 0)
+        throw std::runtime_error("object end without a matching begin");
+    rtcCommitScene(impl->objects[impl->openObject].scene);
+    impl->Check("building an object");
+    impl->openObject = -1;
+}
+
+int EmbreeAggregate::AddInstance(int objectId, const Transform &worldFromInstance) {
+    if (objectId < 0 || objectId >= int(impl->objects.size()))
+        throw std::runtime_error("instance of unknown object " + std::to_string(objectId));
+    if (objectId == impl->openObject)
+        throw std::runtime_error("instance of object \"" + impl->objectNames[objectId] +
+                                 "\" before its end");
+    if (impl->openObject >= 0)
+        throw std::runtime_error("instance inside object \"" +
+                                 impl->objectNames[impl->openObject] +
+                                 "\": objects do not nest");
+    RTCGeometry geom = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(geom, impl->objects[objectId].scene);
+    const SquareMatrix<4> &m = worldFromInstance.GetMatrix();
+    float xfm[12];
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) xfm[4 * r + c] = m[r][c];
+    rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+    impl->instances.push_back({objectId, worldFromInstance});
+    GeometryRecord record{GeometryKind::Instance, nullptr, {}, int(impl->instances.size()) - 1};
+    return impl->Attach(geom, record);
+}
+
+void EmbreeAggregate::Commit() {
+    if (impl->openObject >= 0)
+        throw std::runtime_error("object \"" + impl->objectNames[impl->openObject] +
+                                 "\" has no end");
+    rtcCommitScene(impl->world.scene);
+    impl->Check("building the scene");
+    impl->committed = true;
+}
+
+pstd::optional<ShapeIntersection> EmbreeAggregate::Intersect(const Ray &ray, Float tMax) const {
+    assert(impl->committed);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray = ToEmbree(ray, tMax);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(impl->world.scene, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+        return {};
+
+    // A hit inside an instance is described in the instance's space, then carried to the world.
+    const SceneData *scene = &impl->world;
+    const Transform *worldFromInstance = nullptr;
+    if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+        const GeometryRecord &inst = impl->world.geometries[rh.hit.instID[0]];
+        const InstanceData &data = impl->instances[inst.instanceIndex];
+        scene = &impl->objects[data.objectId];
+        worldFromInstance = &data.worldFromInstance;
+    }
+    const GeometryRecord &g = scene->geometries[rh.hit.geomID];
+    Vector3f wo = -Normalize(ray.d);
+    SurfaceInteraction si = impl->Interaction(g, rh, wo);
+    if (worldFromInstance)
+        si = TransformInteraction(*worldFromInstance, si);
+    si.wo = wo;
+    si.materialIndex = g.attrs.materialIndex;
+    if (g.attrs.areaLightBase >= 0) {
+        bool isMesh = g.kind == GeometryKind::Triangles || g.kind == GeometryKind::BilinearPatches;
+        si.areaLightIndex = g.attrs.areaLightBase + (isMesh ? int(rh.hit.primID) : 0);
+    }
+    return ShapeIntersection{si, rh.ray.tfar};
+}
+
+bool EmbreeAggregate::IntersectP(const Ray &ray, Float tMax) const {
+    assert(impl->committed);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r = ToEmbree(ray, tMax);
+    rtcOccluded1(impl->world.scene, &context, &r);
+    return r.tfar < 0;
+}
+
+Bounds3f EmbreeAggregate::WorldBound() const {
+    if (!impl->committed || impl->world.geometries.empty())
+        return Bounds3f();
+    RTCBounds b;
+    rtcGetSceneBounds(impl->world.scene, &b);
+    return Bounds3f(Point3f(b.lower_x, b.lower_y, b.lower_z),
+                    Point3f(b.upper_x, b.upper_y, b.upper_z));
+}
+
+}  // namespace pbrt

@@ -1,0 +1,75 @@
+// The scene's ray-intersection acceleration structure, on Embree 3 (in the place of pbrt-v4's
+// BVHAggregate and its primitives: GeometricPrimitive, TransformedPrimitive).
+//
+// Triangle meshes are Embree's native triangles; spheres, disks and bilinear patches are Embree
+// user geometry that calls the shapes' own intersection routines; object instances are Embree
+// instances of a shared sub-scene. Every geometry carries PrimitiveAttributes, which Intersect
+// copies into the SurfaceInteraction. Build the aggregate on one thread (Add..., then Commit);
+// Intersect and IntersectP may then be called from any number of threads.
+//
+// Performance: Embree wants denormals flushed to zero; each rendering thread should set
+// _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON) and _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON).
+#pragma once
+
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/ray.h"
+#include "pbrt_ext/shapes.h"
+#include "pbrt_ext/util/bounds.h"
+#include "pbrt_ext/util/pstd.h"
+#include "pbrt_ext/util/transform.h"
+
+#include <memory>
+#include <string>
+
+namespace pbrt {
+
+struct PrimitiveAttributes {
+    int materialIndex = -1;
+    // The area light of the geometry's first primitive: primitive i of a mesh emits as light
+    // areaLightBase + i. -1: not emissive. Ignored (with a warning) inside an object, since
+    // every instance would share one light, as pbrt-v4 also refuses.
+    int areaLightBase = -1;
+};
+
+class EmbreeAggregate {
+  public:
+    // Creates the Embree device; throws std::runtime_error if Embree cannot start.
+    EmbreeAggregate();
+    ~EmbreeAggregate();
+    EmbreeAggregate(const EmbreeAggregate &) = delete;
+    EmbreeAggregate &operator=(const EmbreeAggregate &) = delete;
+    EmbreeAggregate(EmbreeAggregate &&) noexcept;
+    EmbreeAggregate &operator=(EmbreeAggregate &&) noexcept;
+
+    // Geometry goes into the world, or into the object opened by BeginObject. The aggregate
+    // shares ownership of meshes and copies spheres and disks. Each returns the geometry's id
+    // within its scene (the world or the object).
+    int AddTriangleMesh(std::shared_ptr<const TriangleMesh> mesh, PrimitiveAttributes attrs);
+    int AddBilinearPatchMesh(std::shared_ptr<const BilinearPatchMesh> mesh,
+                             PrimitiveAttributes attrs);
+    int AddSphere(const Sphere &sphere, PrimitiveAttributes attrs);
+    int AddDisk(const Disk &disk, PrimitiveAttributes attrs);
+
+    // Object instancing (pbrt-v4's ObjectBegin/ObjectEnd/ObjectInstance): geometry added between
+    // BeginObject and EndObject forms an object, returned as an id; AddInstance places it in the
+    // world. Objects do not nest; an instance may only refer to an ended object. Both throw
+    // std::runtime_error when misused.
+    int BeginObject(const std::string &name);
+    void EndObject();
+    int AddInstance(int objectId, const Transform &worldFromInstance);
+
+    // Builds the acceleration structures; throws std::runtime_error if Embree reports an error.
+    void Commit();
+
+    // The closest hit with 0 < t < tMax, with materialIndex and areaLightIndex filled in.
+    pstd::optional<ShapeIntersection> Intersect(const Ray &ray, Float tMax = Infinity) const;
+    // Whether anything lies along the ray with 0 < t < tMax.
+    bool IntersectP(const Ray &ray, Float tMax = Infinity) const;
+    Bounds3f WorldBound() const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl;
+};
+
+}  // namespace pbrt

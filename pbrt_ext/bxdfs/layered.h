@@ -1,0 +1,581 @@
+// pbrt_ext: two BxDFs stacked with a scattering slab between them, pbrt-v4's LayeredBxDF
+// (Physically Based Rendering, 4th edition, Section 14.3 "Scattering from Layered
+// Materials", after Guo et al., "Position-Free Monte Carlo Simulation for Arbitrary Layered
+// BSDFs", SIGGRAPH Asia 2018), with its two instances CoatedDiffuseBxDF (a dielectric coat
+// over a Lambertian base) and CoatedConductorBxDF (a dielectric coat over a metal).
+//
+// Nothing here is closed-form: f(), Sample_f() and PDF() each follow random walks between
+// the interfaces (z = thickness at the top, z = 0 at the bottom) through a homogeneous
+// slab of unit extinction, the given single-scattering albedo and a Henyey-Greenstein phase
+// function of asymmetry g. f() is an unbiased estimate of the BSDF (nSamples walks, with
+// next-event estimation through the exit interface and MIS); Sample_f() returns the
+// throughput and density of one whole walk, a density known only up to the walks that
+// could have produced the same direction, hence pdfIsProportional; PDF() is an
+// approximation fit for MIS weights, not a normalized density: single-bounce estimates
+// mixed with a uniform density, whose reflection term measures directions inside the
+// coat per solid angle inside, which the coat's refraction compresses by about eta^2
+// (it integrates to 1 for an index-matched coat, to 1.6 - 2.5 for eta = 1.5). Each walk draws its random numbers from an RNG seeded by
+// hashing the arguments (f: wo and wi; Sample_f: wo, uc and u; PDF: wi and wo), so every
+// call with the same arguments returns the same value.
+// A twoSided layer looks the same from below: wo below the surface is mirrored to the top.
+//
+// Differs from pbrt-v4:
+//  - pbrt-v4 requires sampleFlags == All in Sample_f() and PDF(); here a restricted request
+//    is honoured by rejecting walks that leave on a side it excludes (which keeps f / pdf
+//    an unbiased estimate of the allowed part) and by a zero PDF() there;
+//  - f()'s connections to wi through the exit interface's own lobe are MIS-weighted
+//    against the presampled wis with the density wis has for the same inner direction,
+//    exitInterface.PDF(wi, -w, adjoint mode); pbrt-v4 uses PDF(-w, wi, mode), the density
+//    of the reverse move, so its two weights need not sum to one and its f() is biased
+//    against its own Sample_f() (by 20 % in some directions of a coated conductor: see
+//    tests/layered_test.cpp, SampledWeightsMatchEvaluation);
+//  - the seeds hash the arguments alone (pbrt-v4 also hashes its global --seed option).
+#pragma once
+
+#include "pbrt_ext/base/bxdf.h"
+#include "pbrt_ext/bxdfs/conductor.h"
+#include "pbrt_ext/bxdfs/dielectric.h"
+#include "pbrt_ext/bxdfs/diffuse.h"
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/hash.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/pstd.h"
+#include "pbrt_ext/util/rng.h"
+#include "pbrt_ext/util/sampling.h"
+#include "pbrt_ext/util/scattering.h"
+#include "pbrt_ext/util/spectrum.h"
+#include "pbrt_ext/util/vecmath.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+namespace pbrt {
+
+// Whichever of the two interfaces a walk is at: one pointer set, the other null.
+template <typename TopBxDF, typename BottomBxDF>
+class TopOrBottomBxDF {
+  public:
+    TopOrBottomBxDF() = default;
+    PBRT_CPU_GPU TopOrBottomBxDF &operator=(const TopBxDF *t) {
+        top = t;
+        bottom = nullptr;
+        return *this;
+    }
+    PBRT_CPU_GPU TopOrBottomBxDF &operator=(const BottomBxDF *b) {
+        bottom = b;
+        top = nullptr;
+        return *this;
+    }
+
+    PBRT_CPU_GPU SampledSpectrum f(Vector3f wo, Vector3f wi, TransportMode mode) const {
+        return top ? top->f(wo, wi, mode) : bottom->f(wo, wi, mode);
+    }
+
+    PBRT_CPU_GPU pstd::optional<BSDFSample> Sample_f(
+        Vector3f wo, Float uc, Point2f u, TransportMode mode,
+        BxDFReflTransFlags sampleFlags = BxDFReflTransFlags::All) const {
+        return top ? top->Sample_f(wo, uc, u, mode, sampleFlags)
+                   : bottom->Sample_f(wo, uc, u, mode, sampleFlags);
+    }
+
+    PBRT_CPU_GPU Float PDF(Vector3f wo, Vector3f wi, TransportMode mode,
+                           BxDFReflTransFlags sampleFlags = BxDFReflTransFlags::All) const {
+        return top ? top->PDF(wo, wi, mode, sampleFlags) : bottom->PDF(wo, wi, mode, sampleFlags);
+    }
+
+    PBRT_CPU_GPU BxDFFlags Flags() const { return top ? top->Flags() : bottom->Flags(); }
+
+  private:
+    const TopBxDF *top = nullptr;
+    const BottomBxDF *bottom = nullptr;
+};
+
+template <typename TopBxDF, typename BottomBxDF, bool twoSided>
+class LayeredBxDF {
+  public:
+    LayeredBxDF() = default;
+    // A zero thickness would make every transmittance 0 / 0; the smallest positive one
+    // behaves as touching interfaces.
+    PBRT_CPU_GPU LayeredBxDF(TopBxDF top0, BottomBxDF bottom0, Float thickness0,
+                             const SampledSpectrum &albedo0, Float g0, int maxDepth0,
+                             int nSamples0)
+        : top(top0), bottom(bottom0),
+          thickness(std::max(thickness0, std::numeric_limits<Float>::min())), g(g0),
+          albedo(albedo0), maxDepth(maxDepth0), nSamples(nSamples0) {}
+
+    // Light can always come back out through the top, so the layer reflects; it transmits
+    // only when both interfaces do. A scattering slab makes the whole thing diffuse.
+    PBRT_CPU_GPU BxDFFlags Flags() const {
+        BxDFFlags topFlags = top.Flags(), bottomFlags = bottom.Flags();
+        BxDFFlags flags = BxDFFlags::Reflection;
+        if (IsSpecular(topFlags))
+            flags |= BxDFFlags::Specular;
+        if (IsDiffuse(topFlags) || IsDiffuse(bottomFlags) || albedo)
+            flags |= BxDFFlags::Diffuse;
+        else if (IsGlossy(topFlags) || IsGlossy(bottomFlags))
+            flags |= BxDFFlags::Glossy;
+        if (IsTransmissive(topFlags) && IsTransmissive(bottomFlags))
+            flags |= BxDFFlags::Transmission;
+        return flags;
+    }
+
+    PBRT_CPU_GPU SampledSpectrum f(Vector3f wo, Vector3f wi, TransportMode mode) const;
+
+    PBRT_CPU_GPU pstd::optional<BSDFSample> Sample_f(
+        Vector3f wo, Float uc, Point2f u, TransportMode mode,
+        BxDFReflTransFlags sampleFlags = BxDFReflTransFlags::All) const;
+
+    PBRT_CPU_GPU Float PDF(Vector3f wo, Vector3f wi, TransportMode mode,
+                           BxDFReflTransFlags sampleFlags = BxDFReflTransFlags::All) const;
+
+    PBRT_CPU_GPU SampledSpectrum rho(Vector3f wo, pstd::span<const Float> uc,
+                                     pstd::span<const Point2f> u2) const {
+        return EstimateRho(*this, wo, uc, u2);
+    }
+
+    PBRT_CPU_GPU SampledSpectrum rho(pstd::span<const Point2f> u1,
+                                     pstd::span<const Float> uc,
+                                     pstd::span<const Point2f> u2) const {
+        return EstimateRho(*this, u1, uc, u2);
+    }
+
+    PBRT_CPU_GPU void Regularize() {
+        top.Regularize();
+        bottom.Regularize();
+    }
+
+    PBRT_CPU_GPU static constexpr const char *Name() { return "LayeredBxDF"; }
+
+    // Host-only.
+    std::string ToString() const { return Describe(Name()); }
+
+  protected:
+    // Host-only: the ToString() text under a given type name, for the named instances.
+    std::string Describe(const char *name) const {
+        char buf[128];
+        std::snprintf(buf, sizeof(buf), " thickness: %g g: %g maxDepth: %d nSamples: %d ]",
+                      thickness, g, maxDepth, nSamples);
+        return std::string("[ ") + name + " top: " + top.ToString() +
+               " bottom: " + bottom.ToString() + " albedo: " + albedo.ToString() + buf;
+    }
+
+  private:
+    using Interface = TopOrBottomBxDF<TopBxDF, BottomBxDF>;
+
+    // Transmittance of the slab (unit extinction) over a height difference dz along w.
+    PBRT_CPU_GPU static Float Tr(Float dz, Vector3f w) {
+        if (std::abs(dz) <= std::numeric_limits<Float>::min())
+            return 1;
+        return std::exp(-std::abs(dz / w.z));
+    }
+
+    // A sample a walk can continue from: it carries energy along a direction that leaves
+    // the tangent plane.
+    PBRT_CPU_GPU static bool Usable(const pstd::optional<BSDFSample> &bs) {
+        return bs && bs->f && bs->pdf > 0 && bs->wi.z != 0;
+    }
+
+    // Walks that start from wi trace the adjoint quantity (pbrt-v4 writes !mode).
+    PBRT_CPU_GPU static TransportMode Adjoint(TransportMode mode) {
+        return mode == TransportMode::Radiance ? TransportMode::Importance
+                                               : TransportMode::Radiance;
+    }
+
+    // The exit interface's f from the inner direction -w (w heads for the exit) out to
+    // wi. When the presampled wis also reached that inner direction (wisCompetes), the
+    // value is MIS-weighted against it: wPdf is the density w was drawn with, and wis
+    // draws it with the exit's adjoint transmission density from wi.
+    PBRT_CPU_GPU static SampledSpectrum ExitLobe(const Interface &exitInterface, Vector3f w,
+                                                 Vector3f wi, TransportMode mode,
+                                                 bool wisCompetes, Float wPdf) {
+        SampledSpectrum fExit = exitInterface.f(-w, wi, mode);
+        if (!fExit || !wisCompetes)
+            return fExit;
+        Float wisPdf =
+            exitInterface.PDF(wi, -w, Adjoint(mode), BxDFReflTransFlags::Transmission);
+        return fExit * PowerHeuristic(1, wPdf, 1, wisPdf);
+    }
+
+    // The Henyey-Greenstein phase function's value at (wo, wi), which is also the density
+    // SampleHenyeyGreenstein() draws wi with.
+    PBRT_CPU_GPU Float Phase(Vector3f wo, Vector3f wi) const {
+        return HenyeyGreenstein(Dot(wo, wi), g);
+    }
+
+    TopBxDF top;
+    BottomBxDF bottom;
+    // pbrt-v4's material defaults.
+    Float thickness = 0.01f, g = 0;
+    SampledSpectrum albedo = SampledSpectrum(0.f);
+    int maxDepth = 10, nSamples = 1;
+};
+
+// Random numbers for a walk, drawn in a fixed order (function arguments are evaluated in
+// an unspecified one).
+class LayeredWalkRNG {
+  public:
+    PBRT_CPU_GPU LayeredWalkRNG(uint64_t seqIndex, uint64_t offset) : rng(seqIndex, offset) {}
+    PBRT_CPU_GPU Float Get1D() { return rng.Uniform<Float>(); }
+    PBRT_CPU_GPU Point2f Get2D() {
+        Float u0 = rng.Uniform<Float>();
+        return Point2f(u0, rng.Uniform<Float>());
+    }
+
+  private:
+    RNG rng;
+};
+
+template <typename TopBxDF, typename BottomBxDF, bool twoSided>
+PBRT_CPU_GPU SampledSpectrum LayeredBxDF<TopBxDF, BottomBxDF, twoSided>::f(
+    Vector3f wo, Vector3f wi, TransportMode mode) const {
+    if (twoSided && wo.z < 0) {
+        wo = -wo;
+        wi = -wi;
+    }
+    bool enteredTop = twoSided || wo.z > 0;
+    Interface enterInterface;
+    if (enteredTop)
+        enterInterface = &top;
+    else
+        enterInterface = &bottom;
+
+    // Light toward wi leaves through the entrance interface if wi is on wo's side.
+    bool exitsBottom = SameHemisphere(wo, wi) ^ enteredTop;
+    Interface exitInterface, nonExitInterface;
+    if (exitsBottom) {
+        exitInterface = &bottom;
+        nonExitInterface = &top;
+    } else {
+        exitInterface = &top;
+        nonExitInterface = &bottom;
+    }
+    Float exitZ = exitsBottom ? 0 : thickness;
+    bool exitSpecular = IsSpecular(exitInterface.Flags());
+
+    // Reflection at the entrance needs no walk; it is counted once per walk so that the
+    // division by nSamples below leaves it whole.
+    SampledSpectrum f(0.f);
+    if (SameHemisphere(wo, wi))
+        f = Float(nSamples) * enterInterface.f(wo, wi, mode);
+
+    LayeredWalkRNG r(Hash(wo), Hash(wi));
+    for (int s = 0; s < nSamples; ++s) {
+        // Into the slab from wo, and (the adjoint walk) from wi through the exit, which the
+        // walk's vertices connect to by next-event estimation.
+        Float uc = r.Get1D();
+        pstd::optional<BSDFSample> wos = enterInterface.Sample_f(
+            wo, uc, r.Get2D(), mode, BxDFReflTransFlags::Transmission);
+        if (!Usable(wos))
+            continue;
+        uc = r.Get1D();
+        pstd::optional<BSDFSample> wis = exitInterface.Sample_f(
+            wi, uc, r.Get2D(), Adjoint(mode), BxDFReflTransFlags::Transmission);
+        if (!Usable(wis))
+            continue;
+
+        SampledSpectrum beta = wos->f * AbsCosTheta(wos->wi) / wos->pdf;
+        Float z = enteredTop ? thickness : 0;
+        Vector3f w = wos->wi;
+        for (int depth = 0; depth < maxDepth; ++depth) {
+            // Russian roulette once the path has lost most of its weight.
+            if (depth > 3 && beta.MaxComponentValue() < 0.25f) {
+                Float q = std::max<Float>(0, 1 - beta.MaxComponentValue());
+                if (r.Get1D() < q)
+                    break;
+                beta /= 1 - q;
+            }
+
+            if (!albedo) {
+                // Nothing scatters inside: straight on to the other interface.
+                z = (z == thickness) ? 0 : thickness;
+                beta *= Tr(thickness, w);
+            } else {
+                Float dz = SampleExponential(r.Get1D(), 1 / std::abs(w.z));
+                Float zp = w.z > 0 ? (z + dz) : (z - dz);
+                if (zp == z)
+                    continue;
+                if (0 < zp && zp < thickness) {
+                    // A scattering event inside the slab: connect it to wi through the
+                    // exit along the presampled wis (MIS against phase sampling) ...
+                    Float wt = 1;
+                    if (!exitSpecular)
+                        wt = PowerHeuristic(1, wis->pdf, 1, Phase(-w, -wis->wi));
+                    f += beta * albedo * Phase(-w, -wis->wi) * wt * Tr(zp - exitZ, wis->wi) *
+                         wis->f / wis->pdf;
+
+                    // ... then continue in a direction drawn from the phase function, whose
+                    // weight p / pdf is one.
+                    Float phasePdf;
+                    Vector3f wp = SampleHenyeyGreenstein(-w, g, r.Get2D(), &phasePdf);
+                    if (phasePdf == 0 || wp.z == 0)
+                        continue;
+                    beta *= albedo;
+                    w = wp;
+                    z = zp;
+
+                    // If it heads for the exit, connect it to wi through the exit
+                    // interface's own lobe (MIS against wis).
+                    if (((z < exitZ && w.z > 0) || (z > exitZ && w.z < 0)) && !exitSpecular)
+                        f += beta * Tr(zp - exitZ, w) *
+                             ExitLobe(exitInterface, w, wi, mode, true, phasePdf);
+                    continue;
+                }
+                z = Clamp(zp, 0, thickness);
+            }
+
+            if (z == exitZ) {
+                // At the exit, transmission was accounted for by the connections above;
+                // the walk goes on by reflection back into the slab.
+                uc = r.Get1D();
+                pstd::optional<BSDFSample> bs = exitInterface.Sample_f(
+                    -w, uc, r.Get2D(), mode, BxDFReflTransFlags::Reflection);
+                if (!Usable(bs))
+                    break;
+                beta *= bs->f * AbsCosTheta(bs->wi) / bs->pdf;
+                w = bs->wi;
+                continue;
+            }
+
+            // At the far interface: connect to wi along wis (MIS against this interface's
+            // sampling), then reflect.
+            bool nonExitSpecular = IsSpecular(nonExitInterface.Flags());
+            if (!nonExitSpecular) {
+                Float wt = 1;
+                if (!exitSpecular)
+                    wt = PowerHeuristic(1, wis->pdf, 1,
+                                        nonExitInterface.PDF(-w, -wis->wi, mode,
+                                                             BxDFReflTransFlags::Reflection));
+                f += beta * nonExitInterface.f(-w, -wis->wi, mode) * AbsCosTheta(wis->wi) *
+                     wt * Tr(thickness, wis->wi) * wis->f / wis->pdf;
+            }
+            uc = r.Get1D();
+            pstd::optional<BSDFSample> bs = nonExitInterface.Sample_f(
+                -w, uc, r.Get2D(), mode, BxDFReflTransFlags::Reflection);
+            if (!Usable(bs))
+                break;
+            beta *= bs->f * AbsCosTheta(bs->wi) / bs->pdf;
+            w = bs->wi;
+
+            // The reflected direction may reach wi through the exit's lobe (MIS against
+            // wis, which only a non-specular far interface could have used).
+            if (!exitSpecular)
+                f += beta * Tr(thickness, w) *
+                     ExitLobe(exitInterface, w, wi, mode, !nonExitSpecular, bs->pdf);
+        }
+    }
+    return f / Float(nSamples);
+}
+
+template <typename TopBxDF, typename BottomBxDF, bool twoSided>
+PBRT_CPU_GPU pstd::optional<BSDFSample> LayeredBxDF<TopBxDF, BottomBxDF, twoSided>::Sample_f(
+    Vector3f wo, Float uc, Point2f u, TransportMode mode,
+    BxDFReflTransFlags sampleFlags) const {
+    if (!sampleFlags)
+        return {};
+    bool flipWi = false;
+    if (twoSided && wo.z < 0) {
+        wo = -wo;
+        flipWi = true;
+    }
+    // Rejection keeps f / pdf an unbiased estimate of the part the caller allows.
+    auto finish = [&](BSDFSample bs) -> pstd::optional<BSDFSample> {
+        if (flipWi)
+            bs.wi = -bs.wi;
+        BxDFReflTransFlags side = bs.IsReflection() ? BxDFReflTransFlags::Reflection
+                                                    : BxDFReflTransFlags::Transmission;
+        if (!(sampleFlags & side))
+            return {};
+        return bs;
+    };
+
+    bool enteredTop = twoSided || wo.z > 0;
+    pstd::optional<BSDFSample> bs =
+        enteredTop ? top.Sample_f(wo, uc, u, mode) : bottom.Sample_f(wo, uc, u, mode);
+    if (!Usable(bs))
+        return {};
+    if (bs->IsReflection()) {
+        bs->pdfIsProportional = true;
+        return finish(*bs);
+    }
+
+    // Follow the refracted direction through the slab until it leaves; f and pdf collect
+    // the product of every event's value and density.
+    Vector3f w = bs->wi;
+    bool specularPath = bs->IsSpecular();
+    LayeredWalkRNG r(Hash(wo), Hash(uc, u));
+    SampledSpectrum f = bs->f * AbsCosTheta(bs->wi);
+    Float pdf = bs->pdf;
+    Float z = enteredTop ? thickness : 0;
+    for (int depth = 0; depth < maxDepth; ++depth) {
+        // Russian roulette scales the pdf: the caller's f / pdf stays unbiased.
+        Float rrBeta = f.MaxComponentValue() / pdf;
+        if (depth > 3 && rrBeta < 0.25f) {
+            Float q = std::max<Float>(0, 1 - rrBeta);
+            if (r.Get1D() < q)
+                return {};
+            pdf *= 1 - q;
+        }
+        if (w.z == 0)
+            return {};
+
+        if (albedo) {
+            Float dz = SampleExponential(r.Get1D(), 1 / AbsCosTheta(w));
+            Float zp = w.z > 0 ? (z + dz) : (z - dz);
+            if (zp == z)
+                return {};
+            if (0 < zp && zp < thickness) {
+                Float phasePdf;
+                Vector3f wp = SampleHenyeyGreenstein(-w, g, r.Get2D(), &phasePdf);
+                if (phasePdf == 0 || wp.z == 0)
+                    return {};
+                f *= albedo * phasePdf;
+                pdf *= phasePdf;
+                specularPath = false;
+                w = wp;
+                z = zp;
+                continue;
+            }
+            z = Clamp(zp, 0, thickness);
+        } else {
+            z = (z == thickness) ? 0 : thickness;
+            f *= Tr(thickness, w);
+        }
+
+        Interface interfaceBxDF;
+        if (z == 0)
+            interfaceBxDF = &bottom;
+        else
+            interfaceBxDF = &top;
+        Float ucWalk = r.Get1D();
+        bs = interfaceBxDF.Sample_f(-w, ucWalk, r.Get2D(), mode);
+        if (!Usable(bs))
+            return {};
+        f *= bs->f;
+        pdf *= bs->pdf;
+        specularPath &= bs->IsSpecular();
+        w = bs->wi;
+
+        // Transmission through an interface leaves the layers.
+        if (bs->IsTransmission()) {
+            BxDFFlags flags =
+                SameHemisphere(wo, w) ? BxDFFlags::Reflection : BxDFFlags::Transmission;
+            flags |= specularPath ? BxDFFlags::Specular : BxDFFlags::Glossy;
+            return finish(BSDFSample(f, w, pdf, flags, 1.f, true));
+        }
+        f *= AbsCosTheta(bs->wi);
+    }
+    return {};
+}
+
+template <typename TopBxDF, typename BottomBxDF, bool twoSided>
+PBRT_CPU_GPU Float LayeredBxDF<TopBxDF, BottomBxDF, twoSided>::PDF(
+    Vector3f wo, Vector3f wi, TransportMode mode, BxDFReflTransFlags sampleFlags) const {
+    if (twoSided && wo.z < 0) {
+        wo = -wo;
+        wi = -wi;
+    }
+    bool sameSide = SameHemisphere(wo, wi);
+    if (!(sampleFlags &
+          (sameSide ? BxDFReflTransFlags::Reflection : BxDFReflTransFlags::Transmission)))
+        return 0;
+
+    LayeredWalkRNG r(Hash(wi), Hash(wo));
+    bool enteredTop = twoSided || wo.z > 0;
+    Float pdfSum = 0;
+    if (sameSide)
+        pdfSum += nSamples * (enteredTop ? top.PDF(wo, wi, mode, BxDFReflTransFlags::Reflection)
+                                         : bottom.PDF(wo, wi, mode, BxDFReflTransFlags::Reflection));
+
+    for (int s = 0; s < nSamples; ++s) {
+        if (sameSide) {
+            // Transmission in, reflection at the far interface, transmission out: the
+            // densities of the two ends are estimated from sampled transmissions.
+            Interface rInterface, tInterface;
+            if (enteredTop) {
+                rInterface = &bottom;
+                tInterface = &top;
+            } else {
+                rInterface = &top;
+                tInterface = &bottom;
+            }
+            Float uc = r.Get1D();
+            pstd::optional<BSDFSample> wos = tInterface.Sample_f(
+                wo, uc, r.Get2D(), mode, BxDFReflTransFlags::Transmission);
+            uc = r.Get1D();
+            pstd::optional<BSDFSample> wis = tInterface.Sample_f(
+                wi, uc, r.Get2D(), Adjoint(mode), BxDFReflTransFlags::Transmission);
+            if (!Usable(wos) || !Usable(wis))
+                continue;
+            if (!IsNonSpecular(tInterface.Flags())) {
+                // Specular transmission fixes both inner directions.
+                pdfSum += rInterface.PDF(-wos->wi, -wis->wi, mode);
+                continue;
+            }
+            uc = r.Get1D();
+            pstd::optional<BSDFSample> rs =
+                rInterface.Sample_f(-wos->wi, uc, r.Get2D(), mode);
+            if (!Usable(rs))
+                continue;
+            if (!IsNonSpecular(rInterface.Flags())) {
+                pdfSum += tInterface.PDF(-rs->wi, wi, mode);
+            } else {
+                // Two estimates of the same density, combined by MIS.
+                Float rPDF = rInterface.PDF(-wos->wi, -wis->wi, mode);
+                pdfSum += PowerHeuristic(1, wis->pdf, 1, rPDF) * rPDF;
+                Float tPDF = tInterface.PDF(-rs->wi, wi, mode);
+                pdfSum += PowerHeuristic(1, rs->pdf, 1, tPDF) * tPDF;
+            }
+        } else {
+            // Straight through both interfaces.
+            Interface toInterface, tiInterface;
+            if (enteredTop) {
+                toInterface = &top;
+                tiInterface = &bottom;
+            } else {
+                toInterface = &bottom;
+                tiInterface = &top;
+            }
+            Float uc = r.Get1D();
+            pstd::optional<BSDFSample> wos = toInterface.Sample_f(wo, uc, r.Get2D(), mode);
+            if (!Usable(wos) || wos->IsReflection())
+                continue;
+            uc = r.Get1D();
+            pstd::optional<BSDFSample> wis =
+                tiInterface.Sample_f(wi, uc, r.Get2D(), Adjoint(mode));
+            if (!Usable(wis) || wis->IsReflection())
+                continue;
+            if (IsSpecular(toInterface.Flags()))
+                pdfSum += tiInterface.PDF(-wos->wi, wi, mode);
+            else if (IsSpecular(tiInterface.Flags()))
+                pdfSum += toInterface.PDF(wo, -wis->wi, mode);
+            else
+                pdfSum += (toInterface.PDF(wo, -wis->wi, mode) +
+                           tiInterface.PDF(-wos->wi, wi, mode)) / 2;
+        }
+    }
+    // A little uniform density keeps the MIS weights of rare directions away from zero.
+    return Lerp(0.9f, 1 / (4 * Pi), pdfSum / nSamples);
+}
+
+// A dielectric coat over a Lambertian base (pbrt-v4's "coateddiffuse" material).
+class CoatedDiffuseBxDF : public LayeredBxDF<DielectricBxDF, DiffuseBxDF, true> {
+  public:
+    using LayeredBxDF::LayeredBxDF;
+    PBRT_CPU_GPU static constexpr const char *Name() { return "CoatedDiffuseBxDF"; }
+    // Host-only.
+    std::string ToString() const { return Describe(Name()); }
+};
+
+// A dielectric coat over a metal (pbrt-v4's "coatedconductor" material).
+class CoatedConductorBxDF : public LayeredBxDF<DielectricBxDF, ConductorBxDF, true> {
+  public:
+    using LayeredBxDF::LayeredBxDF;
+    PBRT_CPU_GPU static constexpr const char *Name() { return "CoatedConductorBxDF"; }
+    // Host-only.
+    std::string ToString() const { return Describe(Name()); }
+};
+
+}  // namespace pbrt

@@ -1,0 +1,139 @@
+// Cameras: rays from film positions (pbrt-v4's cameras.h, reduced to the perspective and
+// orthographic cameras, without time, media, ray differentials or importance functions).
+//
+// Spaces as in pbrt-v4: camera space looks down +z with +y up and +x to the right of the image;
+// screen space is the image plane with the screen window's extent; raster space counts pixels of
+// the full resolution from the top-left corner, y down. The render space is world space here,
+// so cameras take worldFromCamera (the inverse of a scene file's LookAt/CTM, cameraFromWorld).
+#pragma once
+
+#include <pbrt_ext/filters.h>
+#include <pbrt_ext/pbrt.h>
+#include <pbrt_ext/ray.h>
+#include <pbrt_ext/samplers.h>
+#include <pbrt_ext/util/bounds.h>
+#include <pbrt_ext/util/pstd.h>
+#include <pbrt_ext/util/sampling.h>
+#include <pbrt_ext/util/spectrum.h>
+#include <pbrt_ext/util/transform.h>
+#include <pbrt_ext/util/vecmath.h>
+
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+namespace pbrt {
+
+// pFilm in raster coordinates of the full resolution; pLens in [0, 1)^2.
+struct CameraSample {
+    Point2f pFilm;
+    Point2f pLens;
+    Float filterWeight = 1;
+};
+
+struct CameraRay {
+    Ray ray;
+    SampledSpectrum weight = SampledSpectrum(1);
+};
+
+// pbrt-v4's default screen window: [-1, 1] along the shorter image axis and the aspect ratio's
+// extent along the longer, so that a perspective fov spans the shorter axis.
+Bounds2f DefaultScreenWindow(Point2i fullResolution);
+
+// The transformations shared by cameras defined by a projection (pbrt-v4's ProjectiveCamera),
+// and the thin-lens model: a lens of lensRadius focused at focalDistance along +z.
+class ProjectiveCamera {
+  public:
+    const Transform &WorldFromCamera() const { return worldFromCamera; }
+
+  protected:
+    ProjectiveCamera(Transform worldFromCamera, Point2i fullResolution, Transform screenFromCamera,
+                     Bounds2f screenWindow, Float lensRadius, Float focalDistance);
+
+    // The ray through pLens (on the lens disk) toward where the pinhole ray r reaches the plane
+    // of focus, so that points on that plane stay sharp.
+    PBRT_CPU_GPU Ray FocusThroughLens(Ray r, Point2f uLens) const {
+        if (lensRadius <= 0) return r;
+        Point2f pLens = SampleUniformDiskConcentric(uLens) * lensRadius;
+        Point3f pFocus = r(focalDistance / r.d.z);
+        Point3f o(r.o.x + pLens.x, r.o.y + pLens.y, r.o.z);
+        return Ray(o, Normalize(pFocus - o));
+    }
+
+    Transform worldFromCamera, screenFromCamera, cameraFromRaster, rasterFromScreen, screenFromRaster;
+    Float lensRadius, focalDistance;
+};
+
+// fov (degrees) spans the shorter image axis with the default screen window.
+class PerspectiveCamera : public ProjectiveCamera {
+  public:
+    PerspectiveCamera(Transform worldFromCamera, Point2i fullResolution, Bounds2f screenWindow, Float fov,
+                      Float lensRadius = 0, Float focalDistance = 1e6f);
+
+    static constexpr const char *Name() { return "perspective"; }
+    PBRT_CPU_GPU pstd::optional<CameraRay> GenerateRay(CameraSample sample) const {
+        Point3f pCamera = cameraFromRaster(Point3f(sample.pFilm.x, sample.pFilm.y, 0));
+        Ray r(Point3f(0, 0, 0), Normalize(Vector3f(pCamera)));
+        return CameraRay{worldFromCamera(FocusThroughLens(r, sample.pLens))};
+    }
+    std::string ToString() const;
+
+  private:
+    Float fov;
+};
+
+// Parallel rays along +z; the screen window is the visible extent in camera-space units.
+class OrthographicCamera : public ProjectiveCamera {
+  public:
+    OrthographicCamera(Transform worldFromCamera, Point2i fullResolution, Bounds2f screenWindow,
+                       Float lensRadius = 0, Float focalDistance = 1e6f);
+
+    static constexpr const char *Name() { return "orthographic"; }
+    PBRT_CPU_GPU pstd::optional<CameraRay> GenerateRay(CameraSample sample) const {
+        Point3f pCamera = cameraFromRaster(Point3f(sample.pFilm.x, sample.pFilm.y, 0));
+        Ray r(pCamera, Vector3f(0, 0, 1));
+        return CameraRay{worldFromCamera(FocusThroughLens(r, sample.pLens))};
+    }
+    std::string ToString() const;
+};
+
+// The closed set of cameras.
+class Camera {
+    using Variant = std::variant<PerspectiveCamera, OrthographicCamera>;
+
+  public:
+    template <typename C>
+        requires std::is_constructible_v<Variant, C> && (!std::is_same_v<std::remove_cvref_t<C>, Camera>)
+    Camera(C &&c) : camera(std::forward<C>(c)) {}
+
+    pstd::optional<CameraRay> GenerateRay(CameraSample sample) const {
+        return std::visit([&](const auto &c) { return c.GenerateRay(sample); }, camera);
+    }
+    const Transform &WorldFromCamera() const {
+        return std::visit([](const auto &c) -> const Transform & { return c.WorldFromCamera(); }, camera);
+    }
+    const char *Name() const {
+        return std::visit([](const auto &c) { return c.Name(); }, camera);
+    }
+    std::string ToString() const {
+        return std::visit([](const auto &c) { return c.ToString(); }, camera);
+    }
+
+  private:
+    Variant camera;
+};
+
+// The camera sample for pixel pPixel (pbrt-v4's GetCameraSample, without time): the film
+// position is offset from the pixel center by a point drawn from the filter, whose weight the
+// film applies.
+inline CameraSample GetCameraSample(Sampler &sampler, Point2i pPixel, const Filter &filter) {
+    FilterSample fs = filter.Sample(sampler.GetPixel2D());
+    CameraSample cs;
+    cs.pFilm = Point2f(pPixel.x + 0.5f + fs.p.x, pPixel.y + 0.5f + fs.p.y);
+    cs.pLens = sampler.Get2D();
+    cs.filterWeight = fs.weight;
+    return cs;
+}
+
+}  // namespace pbrt

@@ -1,0 +1,66 @@
+#include <pbrt_ext/film.h>
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace pbrt {
+
+namespace {
+std::string BoundsString(const Bounds2i &b) {
+    char buf[96];
+    std::snprintf(buf, sizeof(buf), "[ %d, %d ] - [ %d, %d ]", b.pMin.x, b.pMin.y, b.pMax.x, b.pMax.y);
+    return buf;
+}
+}  // namespace
+
+Bounds2i PixelBoundsFromCropWindow(Point2i fullResolution, Bounds2f cropWindow) {
+    Bounds2f crop(Point2f(Clamp(cropWindow.pMin.x, 0, 1), Clamp(cropWindow.pMin.y, 0, 1)),
+                  Point2f(Clamp(cropWindow.pMax.x, 0, 1), Clamp(cropWindow.pMax.y, 0, 1)));
+    Bounds2i bounds(Point2i(int(std::ceil(fullResolution.x * crop.pMin.x)), int(std::ceil(fullResolution.y * crop.pMin.y))),
+                    Point2i(int(std::ceil(fullResolution.x * crop.pMax.x)), int(std::ceil(fullResolution.y * crop.pMax.y))));
+    if (bounds.IsEmpty())
+        throw std::runtime_error("film: the crop window covers no pixel (pixel bounds " + BoundsString(bounds) + ")");
+    return bounds;
+}
+
+RGBFilm::RGBFilm(Point2i fullResolution, Bounds2i pixelBounds, Filter filter, std::string filename,
+                 Float maxComponentValue)
+    : fullResolution(fullResolution), pixelBounds(pixelBounds), filter(std::move(filter)),
+      filename(std::move(filename)), maxComponentValue(maxComponentValue) {
+    if (fullResolution.x < 1 || fullResolution.y < 1)
+        throw std::runtime_error("film: the resolution must be positive, not " + std::to_string(fullResolution.x) +
+                                 "x" + std::to_string(fullResolution.y));
+    Bounds2i full(Point2i(0, 0), fullResolution);
+    if (pixelBounds.IsEmpty() || Intersect(pixelBounds, full) != pixelBounds)
+        throw std::runtime_error("film: pixel bounds " + BoundsString(pixelBounds) +
+                                 " are empty or outside the image " + BoundsString(full));
+    pixels.resize(size_t(pixelBounds.Area()));
+}
+
+Image RGBFilm::GetImage() const {
+    Vector2i size = pixelBounds.Diagonal();
+    Image image(Point2i(size.x, size.y));
+    for (Point2i p : pixelBounds) {
+        SampledSpectrum rgb = GetPixelRGB(p);
+        Point2i q(p.x - pixelBounds.pMin.x, p.y - pixelBounds.pMin.y);
+        for (int c = 0; c < 3; ++c) image.SetChannel(q, c, rgb[c]);
+    }
+    return image;
+}
+
+void RGBFilm::WriteImage(ImageMetadata metadata) const {
+    metadata.fullResolution = fullResolution;
+    metadata.pixelBounds = pixelBounds;
+    GetImage().Write(filename, metadata);
+}
+
+std::string RGBFilm::ToString() const {
+    char buf[64];
+    std::snprintf(buf, sizeof(buf), "%g", maxComponentValue);
+    return "[ RGBFilm fullResolution: [ " + std::to_string(fullResolution.x) + ", " +
+           std::to_string(fullResolution.y) + " ] pixelBounds: " + BoundsString(pixelBounds) +
+           " filter: " + filter.ToString() + " filename: \"" + filename + "\" maxComponentValue: " + buf + " ]";
+}
+
+}  // namespace pbrt

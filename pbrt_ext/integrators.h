@@ -1,0 +1,65 @@
+// The path tracer (pbrt-v4's PathIntegrator): next-event estimation and BSDF sampling combined by the
+// power heuristic, Russian roulette, maxdepth, and pbrt-v4's regularization. A strategy switch keeps
+// only one of the two estimators, for convergence studies; all three converge to the same image.
+#pragma once
+
+#include "pbrt_ext/bsdf.h"
+#include "pbrt_ext/cameras.h"
+#include "pbrt_ext/interaction.h"
+#include "pbrt_ext/samplers.h"
+
+#include <cstdint>
+#include <string>
+
+namespace pbrt {
+
+class Scene;
+
+enum class PathStrategy {
+    MIS,    // both estimators, weighted by the power heuristic (default)
+    BSDF,   // BSDF sampling only: emitters count when paths hit them; delta lights are invisible
+    Light,  // light sampling wherever it applies; emitters hit by BSDF sampling count only where
+            // light sampling cannot reach them (seen directly or through a specular bounce)
+};
+
+std::string ToString(PathStrategy strategy);
+// "mis", "bsdf" or "light"; throws std::invalid_argument naming the accepted values otherwise.
+PathStrategy ParsePathStrategy(const std::string &name);
+
+struct PathIntegratorOptions {
+    int maxDepth = 5;
+    bool regularize = false;
+    PathStrategy strategy = PathStrategy::MIS;
+};
+
+// Counts of traced rays, per thread; summed for the statistics.
+struct RayCounts {
+    int64_t closest = 0, shadow = 0;
+};
+
+class PathIntegrator {
+  public:
+    PathIntegrator(const Scene &scene, PathIntegratorOptions options)
+        : scene(scene), options(options) {}
+
+    // Radiance arriving along ray (from its origin's point of view).
+    SampledSpectrum Li(Ray ray, Sampler &sampler, RayCounts &rays) const;
+
+  private:
+    // Direct lighting at an intersection by sampling one light: its contribution weighted for MIS
+    // against BSDF sampling (or with weight 1 for strategy Light).
+    SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, Sampler &sampler,
+                             RayCounts &rays) const;
+    // Weight of an emitter reached by BSDF sampling with density pdfBSDF, that light sampling
+    // from prevCtx would have chosen with density pdfLight.
+    Float BSDFHitWeight(bool lightSamplingApplied, Float pdfBSDF, Float pdfLight) const;
+    // pbrt-v4 lets lights leave out directions that BSDF sampling covers well (a uniform
+    // environment, the dim parts of an image) when MIS combines the two; alone, light sampling
+    // must cover every direction.
+    bool AllowIncompletePDF() const { return options.strategy == PathStrategy::MIS; }
+
+    const Scene &scene;
+    PathIntegratorOptions options;
+};
+
+}  // namespace pbrt

@@ -1,0 +1,46 @@
+// Surface interactions: what the integrator knows about a ray's hit (pbrt-v4's src/pbrt/interaction.h,
+// reduced: no media, no ray differentials).
+#pragma once
+
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/ray.h"
+#include "pbrt_ext/util/vecmath.h"
+
+namespace pbrt {
+
+// The geometry of a hit. n is the geometric normal, flipped by ReverseOrientation and transform
+// handedness exactly as pbrt-v4 does; shading.n lies on the same side as n.
+struct SurfaceInteraction {
+    Point3f p;
+    Normal3f n;
+    Point2f uv;
+    Vector3f wo;  // toward the ray origin, unit
+    Vector3f dpdu, dpdv;
+    struct {
+        Normal3f n;
+        Vector3f dpdu, dpdv;
+    } shading;
+    int materialIndex = -1;   // into Scene::materials; -1: no material (an interface)
+    int areaLightIndex = -1;  // into Scene::lights; -1: not emissive
+
+    // A ray leaving the surface in direction w, its origin offset to w's side.
+    PBRT_CPU_GPU Ray SpawnRay(Vector3f w) const { return Ray(OffsetRayOrigin(p, n, w), w); }
+    // A ray toward the point p2 with d = p2 - o, so that t = 1 reaches it.
+    PBRT_CPU_GPU Ray SpawnRayTo(Point3f p2) const {
+        Point3f o = OffsetRayOrigin(p, n, p2 - p);
+        return Ray(o, p2 - o);
+    }
+};
+
+// What a light needs to know about the point it illuminates (pbrt-v4's LightSampleContext).
+struct LightSampleContext {
+    LightSampleContext() = default;
+    PBRT_CPU_GPU explicit LightSampleContext(const SurfaceInteraction &si)
+        : p(si.p), n(si.n), ns(si.shading.n) {}
+    PBRT_CPU_GPU LightSampleContext(Point3f p, Normal3f n, Normal3f ns) : p(p), n(n), ns(ns) {}
+
+    Point3f p;
+    Normal3f n, ns;  // zero for a point in free space
+};
+
+}  // namespace pbrt

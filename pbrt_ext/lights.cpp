@@ -1,0 +1,313 @@
+#include "pbrt_ext/lights.h"
+
+#include "pbrt_ext/util/equalarea.h"
+#include "pbrt_ext/util/math.h"
+
+#include <cstdio>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace pbrt {
+
+namespace {
+
+// pbrt-v4's SmoothStep: 0 below a, 1 above b, a C1 cubic between.
+Float SmoothStep(Float x, Float a, Float b) {
+    if (a == b)
+        return x < a ? 0 : 1;
+    Float t = Clamp((x - a) / (b - a), 0, 1);
+    return t * t * (3 - 2 * t);
+}
+
+std::string Format(Vector3f v) {
+    char buf[96];
+    std::snprintf(buf, sizeof(buf), "[ %g, %g, %g ]", v.x, v.y, v.z);
+    return buf;
+}
+std::string Format(Point3f p) { return Format(Vector3f(p)); }
+std::string Format(Float v) { return std::to_string(v); }
+
+// Beyond every point of the scene in direction wi, for the shadow ray toward a light at
+// infinity (pbrt-v4 uses the same 2 sceneRadius).
+Point3f PointOutsideScene(Point3f p, Vector3f wi, Float sceneRadius) {
+    return p + wi * (2 * sceneRadius);
+}
+
+// Power of constant radiance L arriving from all directions (or from one, for distant
+// lights) onto the scene's bounding disk, as pbrt-v4 approximates it.
+Float DiskArea(Float sceneRadius) { return Pi * Sqr(sceneRadius); }
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// PointLight
+
+PointLight::PointLight(const Transform &worldFromLight, SampledSpectrum I, Float scale)
+    : pLight(worldFromLight(Point3f(0, 0, 0))), I(I), scale(scale) {}
+
+SampledSpectrum PointLight::Phi() const { return 4 * Pi * scale * I; }
+
+pstd::optional<LightLiSample> PointLight::SampleLi(LightSampleContext ctx, Point2f, bool) const {
+    Float r2 = DistanceSquared(pLight, ctx.p);
+    if (r2 == 0)
+        return {};
+    Vector3f wi = Normalize(pLight - ctx.p);
+    return LightLiSample{scale * I / r2, wi, 1, pLight, Normal3f(0, 0, 0)};
+}
+
+std::string PointLight::ToString() const {
+    return "[ PointLight p: " + Format(pLight) + " I: " + I.ToString() +
+           " scale: " + Format(scale) + " ]";
+}
+
+// ---------------------------------------------------------------------------------------
+// SpotLight
+
+SpotLight::SpotLight(const Transform &worldFromLight, SampledSpectrum I, Float scale,
+                     Float totalWidth, Float falloffStart)
+    : worldFromLight(worldFromLight), Iemit(I), scale(scale),
+      cosFalloffStart(std::cos(Radians(falloffStart))),
+      cosFalloffEnd(std::cos(Radians(totalWidth))) {}
+
+SampledSpectrum SpotLight::I(Vector3f w) const {
+    return SmoothStep(CosTheta(w), cosFalloffEnd, cosFalloffStart) * scale * Iemit;
+}
+
+// The full cone up to the falloff start, plus the falloff band at the average of the
+// smoothstep over cos theta (1/2).
+SampledSpectrum SpotLight::Phi() const {
+    return scale * Iemit * 2 * Pi *
+           ((1 - cosFalloffStart) + (cosFalloffStart - cosFalloffEnd) / 2);
+}
+
+pstd::optional<LightLiSample> SpotLight::SampleLi(LightSampleContext ctx, Point2f, bool) const {
+    Point3f p = worldFromLight(Point3f(0, 0, 0));
+    Float r2 = DistanceSquared(p, ctx.p);
+    if (r2 == 0)
+        return {};
+    Vector3f wi = Normalize(p - ctx.p);
+    Vector3f wLight = Normalize(worldFromLight.ApplyInverse(-wi));
+    SampledSpectrum Li = I(wLight) / r2;
+    if (!Li)
+        return {};
+    return LightLiSample{Li, wi, 1, p, Normal3f(0, 0, 0)};
+}
+
+std::string SpotLight::ToString() const {
+    return "[ SpotLight p: " + Format(worldFromLight(Point3f(0, 0, 0))) +
+           " axis: " + Format(Normalize(worldFromLight(Vector3f(0, 0, 1)))) +
+           " I: " + Iemit.ToString() + " scale: " + Format(scale) +
+           " cosFalloffStart: " + Format(cosFalloffStart) +
+           " cosFalloffEnd: " + Format(cosFalloffEnd) + " ]";
+}
+
+// ---------------------------------------------------------------------------------------
+// DistantLight
+
+DistantLight::DistantLight(const Transform &worldFromLight, SampledSpectrum Lemit, Float scale)
+    : wLight(Normalize(worldFromLight(Vector3f(0, 0, 1)))), Lemit(Lemit), scale(scale) {}
+
+void DistantLight::Preprocess(const Bounds3f &sceneBounds) {
+    Point3f center;
+    sceneBounds.BoundingSphere(&center, &sceneRadius);
+}
+
+SampledSpectrum DistantLight::Phi() const { return scale * Lemit * DiskArea(sceneRadius); }
+
+pstd::optional<LightLiSample> DistantLight::SampleLi(LightSampleContext ctx, Point2f,
+                                                     bool) const {
+    return LightLiSample{scale * Lemit, wLight, 1, PointOutsideScene(ctx.p, wLight, sceneRadius),
+                         Normal3f(0, 0, 0)};
+}
+
+std::string DistantLight::ToString() const {
+    return "[ DistantLight w: " + Format(wLight) + " Lemit: " + Lemit.ToString() +
+           " scale: " + Format(scale) + " ]";
+}
+
+// ---------------------------------------------------------------------------------------
+// DiffuseAreaLight
+
+DiffuseAreaLight::DiffuseAreaLight(Shape shape, SampledSpectrum Lemit, Float scale,
+                                   bool twoSided)
+    : shape(std::move(shape)), area(this->shape.Area()), Lemit(Lemit), scale(scale),
+      twoSided(twoSided) {}
+
+// Lambertian emission: pi L per unit area and side.
+SampledSpectrum DiffuseAreaLight::Phi() const {
+    return Pi * (twoSided ? 2 : 1) * area * scale * Lemit;
+}
+
+SampledSpectrum DiffuseAreaLight::L(Point3f, Normal3f n, Point2f, Vector3f w) const {
+    if (!twoSided && Dot(n, w) < 0)
+        return SampledSpectrum(0.f);
+    return scale * Lemit;
+}
+
+pstd::optional<LightLiSample> DiffuseAreaLight::SampleLi(LightSampleContext ctx, Point2f u,
+                                                         bool) const {
+    pstd::optional<ShapeSample> ss = shape.Sample(ctx, u);
+    if (!ss || !(ss->pdf > 0) || LengthSquared(ss->intr.p - ctx.p) == 0)
+        return {};
+    Vector3f wi = Normalize(ss->intr.p - ctx.p);
+    SampledSpectrum Le = L(ss->intr.p, ss->intr.n, ss->intr.uv, -wi);
+    if (!Le)
+        return {};
+    return LightLiSample{Le, wi, ss->pdf, ss->intr.p, ss->intr.n};
+}
+
+Float DiffuseAreaLight::PDF_Li(LightSampleContext ctx, Vector3f wi, bool) const {
+    return shape.PDF(ctx, wi);
+}
+
+std::string DiffuseAreaLight::ToString() const {
+    return "[ DiffuseAreaLight shape: " + shape.ToString() + " Lemit: " + Lemit.ToString() +
+           " scale: " + Format(scale) + " twoSided: " + (twoSided ? "true" : "false") +
+           " ]";
+}
+
+// ---------------------------------------------------------------------------------------
+// UniformInfiniteLight
+
+UniformInfiniteLight::UniformInfiniteLight(SampledSpectrum Lemit, Float scale)
+    : Lemit(Lemit), scale(scale) {}
+
+void UniformInfiniteLight::Preprocess(const Bounds3f &sceneBounds) {
+    sceneBounds.BoundingSphere(&sceneCenter, &sceneRadius);
+}
+
+SampledSpectrum UniformInfiniteLight::Phi() const {
+    return 4 * Pi * DiskArea(sceneRadius) * scale * Lemit;
+}
+
+// Under MIS, BSDF sampling alone covers a constant environment better than uniform sphere
+// sampling would: the light declines, and PDF_Li says so.
+pstd::optional<LightLiSample> UniformInfiniteLight::SampleLi(LightSampleContext ctx, Point2f u,
+                                                             bool allowIncompletePDF) const {
+    if (allowIncompletePDF)
+        return {};
+    Vector3f wi = SampleUniformSphere(u);
+    return LightLiSample{scale * Lemit, wi, UniformSpherePDF(),
+                         PointOutsideScene(ctx.p, wi, sceneRadius), Normal3f(0, 0, 0)};
+}
+
+Float UniformInfiniteLight::PDF_Li(LightSampleContext, Vector3f, bool allowIncompletePDF) const {
+    return allowIncompletePDF ? 0 : UniformSpherePDF();
+}
+
+SampledSpectrum UniformInfiniteLight::Le(const Ray &) const { return scale * Lemit; }
+
+std::string UniformInfiniteLight::ToString() const {
+    return "[ UniformInfiniteLight Lemit: " + Lemit.ToString() +
+           " scale: " + Format(scale) + " ]";
+}
+
+// ---------------------------------------------------------------------------------------
+// ImageInfiniteLight
+
+namespace {
+
+// Radiance is the pixel clamped at zero (EXR filtering can ring below it).
+SampledSpectrum PixelRGB(const Image &image, Point2i p) {
+    return ClampZero(image.GetChannels(p));
+}
+
+// The pixels' average clamped RGB, row-major as PiecewiseConstant2D expects. Unlike
+// Image::GetSamplingDistribution (pbrt-v4's, which averages raw values), the density is then
+// zero only where the radiance is, so sampling stays unbiased next to negative channels.
+std::vector<Float> SamplingFunction(const Image &image) {
+    Point2i res = image.Resolution();
+    std::vector<Float> f(size_t(res.x) * res.y);
+    for (int y = 0; y < res.y; ++y)
+        for (int x = 0; x < res.x; ++x)
+            f[size_t(y) * res.x + x] = PixelRGB(image, Point2i(x, y)).Average();
+    return f;
+}
+
+// pbrt-v4's compensation: subtract the average and clamp; a constant image keeps its
+// (uniform) density, since nothing would be left to sample.
+std::vector<Float> Compensated(std::vector<Float> f) {
+    double sum = 0;
+    for (Float v : f)
+        sum += v;
+    Float average = Float(sum / f.size());
+    bool allZero = true;
+    for (Float &v : f) {
+        v = std::max<Float>(v - average, 0);
+        allZero &= v == 0;
+    }
+    if (allZero)
+        std::fill(f.begin(), f.end(), Float(1));
+    return f;
+}
+
+Image CheckedSquare(Image image) {
+    Point2i res = image.Resolution();
+    if (res.x != res.y || res.x <= 0)
+        throw std::runtime_error("ImageInfiniteLight: image resolution " + std::to_string(res.x) +
+                                 "x" + std::to_string(res.y) +
+                                 " is not square; the equal-area octahedral mapping needs a "
+                                 "square image");
+    return image;
+}
+
+}  // namespace
+
+ImageInfiniteLight::ImageInfiniteLight(const Transform &worldFromLight, Image image, Float scale)
+    : worldFromLight(worldFromLight), image(CheckedSquare(std::move(image))), scale(scale) {
+    Point2i res = this->image.Resolution();
+    std::vector<Float> f = SamplingFunction(this->image);
+    distribution = PiecewiseConstant2D(f, res.x, res.y);
+    compensatedDistribution = PiecewiseConstant2D(Compensated(std::move(f)), res.x, res.y);
+}
+
+void ImageInfiniteLight::Preprocess(const Bounds3f &sceneBounds) {
+    sceneBounds.BoundingSphere(&sceneCenter, &sceneRadius);
+}
+
+// Nearest pixel, as pbrt-v4; uv on the square's far edges gives a pixel index one past the
+// end, which the octahedral wrap folds back onto the image.
+SampledSpectrum ImageInfiniteLight::ImageLe(Point2f uv) const {
+    return scale * ClampZero(image.LookupNearest(uv, WrapMode::OctahedralSphere));
+}
+
+// Average radiance over the sphere times the 4 pi pi r^2 of a uniform environment.
+SampledSpectrum ImageInfiniteLight::Phi() const {
+    Point2i res = image.Resolution();
+    SampledSpectrum sumL(0.f);
+    for (int y = 0; y < res.y; ++y)
+        for (int x = 0; x < res.x; ++x)
+            sumL += PixelRGB(image, Point2i(x, y));
+    return 4 * Pi * DiskArea(sceneRadius) * scale * sumL / (Float(res.x) * res.y);
+}
+
+pstd::optional<LightLiSample> ImageInfiniteLight::SampleLi(LightSampleContext ctx, Point2f u,
+                                                           bool allowIncompletePDF) const {
+    Float mapPDF = 0;
+    Point2f uv = allowIncompletePDF ? compensatedDistribution.Sample(u, &mapPDF)
+                                    : distribution.Sample(u, &mapPDF);
+    if (mapPDF == 0)
+        return {};
+    Vector3f wi = Normalize(worldFromLight(EqualAreaSquareToSphere(uv)));
+    return LightLiSample{ImageLe(uv), wi, mapPDF / (4 * Pi),
+                         PointOutsideScene(ctx.p, wi, sceneRadius), Normal3f(0, 0, 0)};
+}
+
+Float ImageInfiniteLight::PDF_Li(LightSampleContext, Vector3f wi, bool allowIncompletePDF) const {
+    Point2f uv = EqualAreaSphereToSquare(Normalize(worldFromLight.ApplyInverse(wi)));
+    Float mapPDF = allowIncompletePDF ? compensatedDistribution.PDF(uv) : distribution.PDF(uv);
+    return mapPDF / (4 * Pi);
+}
+
+SampledSpectrum ImageInfiniteLight::Le(const Ray &ray) const {
+    return ImageLe(EqualAreaSphereToSquare(Normalize(worldFromLight.ApplyInverse(ray.d))));
+}
+
+std::string ImageInfiniteLight::ToString() const {
+    Point2i res = image.Resolution();
+    return "[ ImageInfiniteLight resolution: " + std::to_string(res.x) + "x" +
+           std::to_string(res.y) + " scale: " + Format(scale) + " ]";
+}
+
+}  // namespace pbrt

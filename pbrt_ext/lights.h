@@ -1,0 +1,252 @@
+// Lights (pbrt-v4's src/pbrt/lights.h, reduced: RGB spectra, no media, no time, no textured or
+// alpha-masked area lights, no portal or projection lights).
+//
+// Conventions, as in pbrt-v4:
+//   - Render space = world space; worldFromLight is pbrt-v4's renderFromLight.
+//   - SampleLi returns the radiance arriving at ctx.p along -wi and its density per unit solid
+//     angle; delta lights (point, spot, distant) report pdf 1 and PDF_Li 0, since no other
+//     strategy can find them.
+//   - pLight is the point a shadow ray goes to: the sampled surface point, the light's position,
+//     or a point beyond the scene (2 sceneRadius away) for distant and infinite lights.
+//   - allowIncompletePDF: the caller combines light sampling with BSDF sampling by MIS, so the
+//     light may leave directions BSDF sampling covers well to that strategy (pbrt-v4): the uniform
+//     infinite light then samples nothing, and the image light samples a compensated density.
+//   - Phi() is the emitted power; distant and infinite lights need Preprocess(sceneBounds) first.
+//   - Values are never negative, NaN or infinite: images are clamped at zero.
+// Host code: area lights hold shapes that point into host meshes, the image light owns its image.
+#pragma once
+
+#include "pbrt_ext/interaction.h"
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/ray.h"
+#include "pbrt_ext/shapes.h"
+#include "pbrt_ext/util/bounds.h"
+#include "pbrt_ext/util/image.h"
+#include "pbrt_ext/util/pstd.h"
+#include "pbrt_ext/util/sampling.h"
+#include "pbrt_ext/util/spectrum.h"
+#include "pbrt_ext/util/transform.h"
+#include "pbrt_ext/util/vecmath.h"
+
+#include <string>
+#include <variant>
+
+namespace pbrt {
+
+enum class LightType { DeltaPosition, DeltaDirection, Area, Infinite };
+
+inline bool IsDeltaLight(LightType type) {
+    return type == LightType::DeltaPosition || type == LightType::DeltaDirection;
+}
+
+struct LightLiSample {
+    SampledSpectrum L;
+    Vector3f wi;  // unit, from the receiving point toward the light
+    Float pdf;    // per unit solid angle; 1 for delta lights
+    Point3f pLight;
+    Normal3f nLight;  // zero where the light has no surface
+};
+
+// Isotropic point source of intensity scale * I at the light-space origin.
+class PointLight {
+  public:
+    PointLight(const Transform &worldFromLight, SampledSpectrum I, Float scale);
+
+    LightType Type() const { return LightType::DeltaPosition; }
+    SampledSpectrum Phi() const;
+    pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
+                                           bool allowIncompletePDF = false) const;
+    Float PDF_Li(LightSampleContext, Vector3f, bool = false) const { return 0; }
+    std::string ToString() const;
+
+  private:
+    Point3f pLight;
+    SampledSpectrum I;
+    Float scale;
+};
+
+// A point source shining down light-space +z: full intensity within falloffStart degrees of
+// the axis, zero beyond totalWidth, a smoothstep in cos theta between. pbrt-v4's parameters:
+// a scene's "coneangle" is totalWidth and "coneangle - conedelta" is falloffStart.
+class SpotLight {
+  public:
+    SpotLight(const Transform &worldFromLight, SampledSpectrum I, Float scale, Float totalWidth,
+              Float falloffStart);
+
+    LightType Type() const { return LightType::DeltaPosition; }
+    SampledSpectrum Phi() const;
+    pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
+                                           bool allowIncompletePDF = false) const;
+    Float PDF_Li(LightSampleContext, Vector3f, bool = false) const { return 0; }
+    std::string ToString() const;
+
+    // Intensity toward the light-space direction w (unit).
+    SampledSpectrum I(Vector3f w) const;
+
+  private:
+    Transform worldFromLight;
+    SampledSpectrum Iemit;
+    Float scale, cosFalloffStart, cosFalloffEnd;
+};
+
+// Parallel light of radiance scale * Lemit arriving from light-space +z (pbrt-v4: the
+// direction from "from" toward "to" is the one the light travels; the parser builds the
+// transform that sends +z to from - to).
+class DistantLight {
+  public:
+    DistantLight(const Transform &worldFromLight, SampledSpectrum Lemit, Float scale);
+
+    LightType Type() const { return LightType::DeltaDirection; }
+    void Preprocess(const Bounds3f &sceneBounds);
+    SampledSpectrum Phi() const;
+    pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
+                                           bool allowIncompletePDF = false) const;
+    Float PDF_Li(LightSampleContext, Vector3f, bool = false) const { return 0; }
+    std::string ToString() const;
+
+  private:
+    Vector3f wLight;  // unit, toward the light
+    SampledSpectrum Lemit;
+    Float scale;
+    Float sceneRadius = 0;
+};
+
+// Constant radiance scale * Lemit leaving the front of a shape (both sides if twoSided); the
+// front is the side the shape's geometric normal n points to.
+class DiffuseAreaLight {
+  public:
+    DiffuseAreaLight(Shape shape, SampledSpectrum Lemit, Float scale, bool twoSided);
+
+    LightType Type() const { return LightType::Area; }
+    SampledSpectrum Phi() const;
+    pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
+                                           bool allowIncompletePDF = false) const;
+    Float PDF_Li(LightSampleContext ctx, Vector3f wi, bool allowIncompletePDF = false) const;
+    // Radiance leaving the surface point p with normal n toward w.
+    SampledSpectrum L(Point3f p, Normal3f n, Point2f uv, Vector3f w) const;
+    std::string ToString() const;
+
+  private:
+    Shape shape;
+    Float area;
+    SampledSpectrum Lemit;
+    Float scale;
+    bool twoSided;
+};
+
+// Constant radiance scale * Lemit from every direction at infinity.
+class UniformInfiniteLight {
+  public:
+    UniformInfiniteLight(SampledSpectrum Lemit, Float scale);
+
+    LightType Type() const { return LightType::Infinite; }
+    void Preprocess(const Bounds3f &sceneBounds);
+    SampledSpectrum Phi() const;
+    pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
+                                           bool allowIncompletePDF = false) const;
+    Float PDF_Li(LightSampleContext ctx, Vector3f wi, bool allowIncompletePDF = false) const;
+    SampledSpectrum Le(const Ray &ray) const;
+    std::string ToString() const;
+
+  private:
+    SampledSpectrum Lemit;
+    Float scale;
+    Point3f sceneCenter;
+    Float sceneRadius = 0;
+};
+
+// Environment light from a square RGB image in the equal-area octahedral parameterization
+// (util/equalarea.h): the light-space direction w has radiance scale * image(EqualAreaSphereToSquare(w)),
+// nearest-pixel lookup as pbrt-v4. Directions are importance sampled by a PiecewiseConstant2D
+// over the pixels' average RGB; since the map is equal-area, its density per unit square is
+// the density per solid angle times 4 pi. Throws std::runtime_error for an image that is not
+// square.
+class ImageInfiniteLight {
+  public:
+    ImageInfiniteLight(const Transform &worldFromLight, Image image, Float scale);
+
+    LightType Type() const { return LightType::Infinite; }
+    void Preprocess(const Bounds3f &sceneBounds);
+    SampledSpectrum Phi() const;
+    pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
+                                           bool allowIncompletePDF = false) const;
+    Float PDF_Li(LightSampleContext ctx, Vector3f wi, bool allowIncompletePDF = false) const;
+    SampledSpectrum Le(const Ray &ray) const;
+    std::string ToString() const;
+
+  private:
+    // Radiance at the point uv of the equal-area square.
+    SampledSpectrum ImageLe(Point2f uv) const;
+
+    Transform worldFromLight;
+    Image image;
+    Float scale;
+    Point3f sceneCenter;
+    Float sceneRadius = 0;
+    // The second density is for MIS with BSDF sampling: the image minus its average, clamped at
+    // zero, so that light sampling concentrates on what stands out and leaves the smooth
+    // remainder to BSDF sampling (Karlík et al. 2019, "MIS compensation", as pbrt-v4).
+    PiecewiseConstant2D distribution, compensatedDistribution;
+};
+
+// Closed dispatch over the light kinds. L is zero for lights without a surface, Le zero for
+// lights that escaping rays cannot see, and Preprocess does nothing for lights that do not
+// depend on the scene's extent.
+class Light {
+  public:
+    template <typename T>
+    Light(T light) : light(std::move(light)) {}
+
+    LightType Type() const {
+        return std::visit([](const auto &l) { return l.Type(); }, light);
+    }
+    SampledSpectrum Phi() const {
+        return std::visit([](const auto &l) { return l.Phi(); }, light);
+    }
+    void Preprocess(const Bounds3f &sceneBounds) {
+        std::visit([&](auto &l) {
+            if constexpr (requires { l.Preprocess(sceneBounds); })
+                l.Preprocess(sceneBounds);
+        }, light);
+    }
+    pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
+                                           bool allowIncompletePDF = false) const {
+        return std::visit([&](const auto &l) { return l.SampleLi(ctx, u, allowIncompletePDF); },
+                          light);
+    }
+    Float PDF_Li(LightSampleContext ctx, Vector3f wi, bool allowIncompletePDF = false) const {
+        return std::visit([&](const auto &l) { return l.PDF_Li(ctx, wi, allowIncompletePDF); },
+                          light);
+    }
+    SampledSpectrum L(Point3f p, Normal3f n, Point2f uv, Vector3f w) const {
+        return std::visit([&](const auto &l) {
+            if constexpr (requires { l.L(p, n, uv, w); })
+                return l.L(p, n, uv, w);
+            else
+                return SampledSpectrum(0.f);
+        }, light);
+    }
+    SampledSpectrum Le(const Ray &ray) const {
+        return std::visit([&](const auto &l) {
+            if constexpr (requires { l.Le(ray); })
+                return l.Le(ray);
+            else
+                return SampledSpectrum(0.f);
+        }, light);
+    }
+    std::string ToString() const {
+        return std::visit([](const auto &l) { return l.ToString(); }, light);
+    }
+
+    template <typename T>
+    const T *CastOrNullptr() const {
+        return std::get_if<T>(&light);
+    }
+
+  private:
+    std::variant<PointLight, SpotLight, DistantLight, DiffuseAreaLight, UniformInfiniteLight,
+                 ImageInfiniteLight>
+        light;
+};
+
+}  // namespace pbrt

@@ -1,0 +1,35 @@
+// Rays and their safe spawning from surfaces (pbrt-v4's src/pbrt/ray.h, reduced: no media, no time).
+#pragma once
+
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/vecmath.h"
+
+namespace pbrt {
+
+struct Ray {
+    Ray() = default;
+    PBRT_CPU_GPU Ray(Point3f o, Vector3f d) : o(o), d(d) {}
+    PBRT_CPU_GPU Point3f operator()(Float t) const { return o + d * t; }
+
+    Point3f o;
+    Vector3f d;
+};
+
+// Moves a ray origin off the surface at p along the geometric normal n, to the side w leaves
+// toward, so that the spawned ray does not re-hit its own surface. pbrt-v4 bounds the
+// intersection's rounding error exactly; we use a bound proportional to the magnitude of p,
+// which covers Embree's watertight triangle and our quadric intersection routines.
+PBRT_CPU_GPU inline Point3f OffsetRayOrigin(Point3f p, Normal3f n, Vector3f w) {
+    Float scale = 1 + std::max(std::max(std::abs(p.x), std::abs(p.y)), std::abs(p.z));
+    Vector3f offset = Vector3f(n) * (Float(1e-4) * scale);
+    if (Dot(w, Vector3f(n)) < 0)
+        offset = -offset;
+    return p + offset;
+}
+
+// The parametric distance to use as tMax for a shadow ray from an offset origin toward pLight:
+// a little short of 1, so that the light's own surface does not occlude it.
+PBRT_CPU_GPU inline constexpr Float ShadowEpsilon() { return Float(1e-4); }
+
+}  // namespace pbrt

@@ -1,0 +1,88 @@
+#include "pbrt_ext/scene.h"
+
+#include <stdexcept>
+
+namespace pbrt {
+
+SceneBuilder::SceneBuilder(Camera camera, RGBFilm film, Sampler sampler)
+    : scene(new Scene{EmbreeAggregate(), {}, {}, {}, LightSampler(UniformLightSampler({})),
+                      std::move(camera), std::move(film), std::move(sampler), {}}) {}
+
+int SceneBuilder::AddMaterial(Material material) {
+    scene->materials.push_back(std::move(material));
+    return int(scene->materials.size()) - 1;
+}
+
+template <typename ShapeFor>
+int SceneBuilder::AddAreaLights(const AreaLightDescription &emission, int count,
+                                ShapeFor shapeFor) {
+    int first = int(scene->lights.size());
+    for (int i = 0; i < count; ++i)
+        scene->lights.push_back(
+            DiffuseAreaLight(shapeFor(i), emission.L, emission.scale, emission.twoSided));
+    return first;
+}
+
+void SceneBuilder::AddTriangleMesh(std::shared_ptr<TriangleMesh> mesh, int material,
+                                   std::optional<AreaLightDescription> emission) {
+    PrimitiveAttributes attributes{material, -1};
+    if (emission)
+        attributes.areaLightBase =
+            AddAreaLights(*emission, mesh->NumTriangles(),
+                          [&](int i) { return Shape(Triangle(mesh.get(), i)); });
+    scene->aggregate.AddTriangleMesh(std::move(mesh), attributes);
+}
+
+void SceneBuilder::AddBilinearPatchMesh(std::shared_ptr<BilinearPatchMesh> mesh, int material,
+                                        std::optional<AreaLightDescription> emission) {
+    PrimitiveAttributes attributes{material, -1};
+    if (emission)
+        attributes.areaLightBase =
+            AddAreaLights(*emission, mesh->NumPatches(),
+                          [&](int i) { return Shape(BilinearPatch(mesh.get(), i)); });
+    scene->aggregate.AddBilinearPatchMesh(std::move(mesh), attributes);
+}
+
+void SceneBuilder::AddSphere(const Sphere &sphere, int material,
+                             std::optional<AreaLightDescription> emission) {
+    PrimitiveAttributes attributes{material, -1};
+    if (emission)
+        attributes.areaLightBase = AddAreaLights(*emission, 1, [&](int) { return Shape(sphere); });
+    scene->aggregate.AddSphere(sphere, attributes);
+}
+
+void SceneBuilder::AddDisk(const Disk &disk, int material,
+                           std::optional<AreaLightDescription> emission) {
+    PrimitiveAttributes attributes{material, -1};
+    if (emission)
+        attributes.areaLightBase = AddAreaLights(*emission, 1, [&](int) { return Shape(disk); });
+    scene->aggregate.AddDisk(disk, attributes);
+}
+
+void SceneBuilder::AddLight(Light light) { scene->lights.push_back(std::move(light)); }
+
+void SceneBuilder::SetLightSampler(std::string name) {
+    if (name != "power" && name != "uniform")
+        throw std::invalid_argument("unknown light sampler \"" + name +
+                                    "\": expected power or uniform");
+    lightSamplerName = std::move(name);
+}
+
+std::unique_ptr<Scene> SceneBuilder::Build() {
+    scene->aggregate.Commit();
+    Bounds3f bounds = scene->aggregate.WorldBound();
+    for (size_t i = 0; i < scene->lights.size(); ++i) {
+        Light &light = scene->lights[i];
+        light.Preprocess(bounds);
+        if (light.Type() == LightType::Infinite)
+            scene->infiniteLights.push_back(int(i));
+    }
+    if (lightSamplerName == "uniform")
+        scene->lightSampler = UniformLightSampler(scene->lights);
+    else
+        scene->lightSampler = PowerLightSampler(scene->lights);
+    scene->integratorOptions = integratorOptions;
+    return std::move(scene);
+}
+
+}  // namespace pbrt

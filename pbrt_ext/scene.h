@@ -1,0 +1,108 @@
+// The render-ready scene and the builder that makes it (DESIGN.md: description -> builder -> scene).
+//
+// SceneBuilder is the one API through which scenes are made: the pbrt-v4 parser feeds it, and tests
+// call it directly. It owns nothing Embree-specific in its interface; Build() creates the Embree
+// aggregate, one area light per emissive primitive, and the light sampler the lights need.
+#pragma once
+
+#include "pbrt_ext/aggregate.h"
+#include "pbrt_ext/cameras.h"
+#include "pbrt_ext/film.h"
+#include "pbrt_ext/integrators.h"
+#include "pbrt_ext/lights.h"
+#include "pbrt_ext/lightsamplers.h"
+#include "pbrt_ext/materials.h"
+#include "pbrt_ext/samplers.h"
+#include "pbrt_ext/shapes.h"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace pbrt {
+
+// The light sampler a scene uses: pbrt-v4's "power" (default) or "uniform".
+class LightSampler {
+  public:
+    using Variant = std::variant<PowerLightSampler, UniformLightSampler>;
+    template <typename T>
+    LightSampler(T sampler) : sampler(std::move(sampler)) {}
+
+    pstd::optional<SampledLight> Sample(Float u) const {
+        return std::visit([&](const auto &s) { return s.Sample(u); }, sampler);
+    }
+    Float PMF(int lightIndex) const {
+        return std::visit([&](const auto &s) { return s.PMF(lightIndex); }, sampler);
+    }
+
+  private:
+    Variant sampler;
+};
+
+// Everything a render needs, immutable but for the film that accumulates it.
+class Scene {
+  public:
+    pstd::optional<ShapeIntersection> Intersect(const Ray &ray, Float tMax = Infinity) const {
+        return aggregate.Intersect(ray, tMax);
+    }
+    bool IntersectP(const Ray &ray, Float tMax = Infinity) const {
+        return aggregate.IntersectP(ray, tMax);
+    }
+
+    EmbreeAggregate aggregate;
+    std::vector<Material> materials;
+    std::vector<Light> lights;
+    std::vector<int> infiniteLights;  // indices into lights: the ones escaping rays look up
+    LightSampler lightSampler;
+    Camera camera;
+    RGBFilm film;
+    Sampler sampler;
+    PathIntegratorOptions integratorOptions;
+};
+
+// Emission of an area light attached to a shape (pbrt-v4's AreaLightSource "diffuse").
+struct AreaLightDescription {
+    SampledSpectrum L = SampledSpectrum(1.f);
+    Float scale = 1;
+    bool twoSided = false;
+};
+
+class SceneBuilder {
+  public:
+    SceneBuilder(Camera camera, RGBFilm film, Sampler sampler);
+
+    // Materials are referenced by the index this returns.
+    int AddMaterial(Material material);
+
+    // Shapes, each with a material (-1: an interface, invisible to shading) and optional emission.
+    void AddTriangleMesh(std::shared_ptr<TriangleMesh> mesh, int material,
+                         std::optional<AreaLightDescription> emission = {});
+    void AddBilinearPatchMesh(std::shared_ptr<BilinearPatchMesh> mesh, int material,
+                              std::optional<AreaLightDescription> emission = {});
+    void AddSphere(const Sphere &sphere, int material,
+                   std::optional<AreaLightDescription> emission = {});
+    void AddDisk(const Disk &disk, int material,
+                 std::optional<AreaLightDescription> emission = {});
+
+    // Lights that are not attached to shapes: point, spot, distant, infinite.
+    void AddLight(Light light);
+
+    void SetIntegrator(PathIntegratorOptions options) { integratorOptions = options; }
+    void SetLightSampler(std::string name);  // "power" (default) or "uniform"
+
+    // The scene, ready to render. The builder is left empty.
+    std::unique_ptr<Scene> Build();
+
+  private:
+    // Adds one DiffuseAreaLight per primitive of a shape; returns the index of the first.
+    template <typename ShapeFor>
+    int AddAreaLights(const AreaLightDescription &emission, int count, ShapeFor shapeFor);
+
+    std::unique_ptr<Scene> scene;
+    PathIntegratorOptions integratorOptions;
+    std::string lightSamplerName = "power";
+};
+
+}  // namespace pbrt

@@ -1,0 +1,217 @@
+#include <pbrt_ext/util/image.h>
+
+#include <ImfChannelList.h>
+#include <ImfDoubleAttribute.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIntAttribute.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+#include <OpenImageIO/imageio.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+namespace pbrt {
+
+namespace {
+
+[[noreturn]] void ThrowFileError(const std::string &path, const std::string &what) {
+    throw std::runtime_error(path + ": error: " + what);
+}
+
+std::string LowercaseExtension(const std::string &path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    return ext;
+}
+
+// A name beside the target, unique per process and call, so that concurrent writers (and a
+// crash mid-write) never touch the target itself.
+std::string TemporaryPathFor(const std::string &path) {
+    static std::atomic<unsigned> counter{0};
+    std::filesystem::path p(path);
+    std::string name = "." + p.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+                       std::to_string(counter++);
+    return (p.parent_path() / name).string();
+}
+
+// Runs write(tmpPath), then renames the result onto path; on any failure the temporary file
+// is removed and the target is left as it was.
+template <typename WriteFn>
+void WriteAtomically(const std::string &path, WriteFn write) {
+    std::string tmpPath = TemporaryPathFor(path);
+    try {
+        write(tmpPath);
+        std::error_code ec;
+        std::filesystem::rename(tmpPath, path, ec);
+        if (ec) ThrowFileError(path, "cannot rename the temporary file into place: " + ec.message());
+    } catch (...) {
+        std::error_code ignored;
+        std::filesystem::remove(tmpPath, ignored);
+        throw;
+    }
+}
+
+bool IsFloatFormat(OIIO::TypeDesc format) {
+    return format.basetype == OIIO::TypeDesc::FLOAT || format.basetype == OIIO::TypeDesc::HALF ||
+           format.basetype == OIIO::TypeDesc::DOUBLE;
+}
+
+// The file channels that become R, G, B: named R/G/B channels where present (EXR may hold
+// more, in any order), else a single gray channel replicated, else the first three.
+std::array<int, 3> RGBChannelIndices(const OIIO::ImageSpec &spec) {
+    std::array<int, 3> idx = {-1, -1, -1};
+    const char *names[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < spec.nchannels; ++i)
+            if (i < int(spec.channelnames.size()) && spec.channelnames[i] == names[c]) idx[c] = i;
+    if (idx[0] >= 0 && idx[1] >= 0 && idx[2] >= 0) return idx;
+    // Gray, or gray and alpha.
+    if (spec.nchannels < 3) return {0, 0, 0};
+    return {0, 1, 2};
+}
+
+}  // namespace
+
+Image::Image(Point2i res) : resolution(res) {
+    if (res.x < 0 || res.y < 0)
+        throw std::runtime_error("Image: negative resolution " + std::to_string(res.x) + "x" +
+                                 std::to_string(res.y));
+    pixels.assign(3 * size_t(res.x) * size_t(res.y), 0.f);
+}
+
+Float Image::LookupNearestChannel(Point2f st, int c, WrapMode2D wrapMode) const {
+    Point2i p(int(st.x * resolution.x), int(st.y * resolution.y));
+    return GetChannel(p, c, wrapMode);
+}
+
+SampledSpectrum Image::LookupNearest(Point2f st, WrapMode2D wrapMode) const {
+    Point2i p(int(st.x * resolution.x), int(st.y * resolution.y));
+    return GetChannels(p, wrapMode);
+}
+
+Float Image::BilerpChannel(Point2f st, int c, WrapMode2D wrapMode) const {
+    return Bilerp(st, wrapMode)[c];
+}
+
+SampledSpectrum Image::Bilerp(Point2f st, WrapMode2D wrapMode) const {
+    // Pixel centers sit at half-integers in continuous pixel coordinates.
+    Float x = st.x * resolution.x - 0.5f, y = st.y * resolution.y - 0.5f;
+    int xi = int(std::floor(x)), yi = int(std::floor(y));
+    Float dx = x - xi, dy = y - yi;
+    return ((1 - dx) * (1 - dy)) * GetChannels(Point2i(xi, yi), wrapMode) +
+           (dx * (1 - dy)) * GetChannels(Point2i(xi + 1, yi), wrapMode) +
+           ((1 - dx) * dy) * GetChannels(Point2i(xi, yi + 1), wrapMode) +
+           (dx * dy) * GetChannels(Point2i(xi + 1, yi + 1), wrapMode);
+}
+
+std::vector<Float> Image::GetSamplingDistribution() const {
+    std::vector<Float> f(size_t(resolution.x) * size_t(resolution.y));
+    for (int y = 0; y < resolution.y; ++y)
+        for (int x = 0; x < resolution.x; ++x)
+            f[size_t(y) * resolution.x + x] = GetChannels(Point2i(x, y)).Average();
+    return f;
+}
+
+Image Image::Read(const std::string &path) {
+    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
+    if (!in) ThrowFileError(path, "cannot read the image: " + OIIO::geterror());
+    const OIIO::ImageSpec &spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+        ThrowFileError(path, "the image has no pixels");
+
+    std::vector<float> raw(size_t(spec.width) * spec.height * spec.nchannels);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, raw.data()))
+        ThrowFileError(path, "cannot decode the pixels: " + in->geterror());
+    in->close();
+
+    // Integer pixels are display-encoded (sRGB); float pixels are radiometric already.
+    bool decodeSRGB = !IsFloatFormat(spec.format);
+    std::array<int, 3> channel = RGBChannelIndices(spec);
+    Image image(Point2i(spec.width, spec.height));
+    for (int y = 0; y < spec.height; ++y)
+        for (int x = 0; x < spec.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                Float v = raw[(size_t(y) * spec.width + x) * spec.nchannels + channel[c]];
+                image.SetChannel(Point2i(x, y), c, decodeSRGB ? SRGBToLinear(v) : v);
+            }
+    return image;
+}
+
+void Image::Write(const std::string &path, const ImageMetadata &metadata) const {
+    if (Empty()) ThrowFileError(path, "cannot write an image without pixels");
+    if (LowercaseExtension(path) == ".exr")
+        WriteAtomically(path, [&](const std::string &tmp) { WriteEXR(path, tmp, metadata); });
+    else
+        WriteAtomically(path, [&](const std::string &tmp) { WriteOIIO(path, tmp); });
+}
+
+void Image::WriteEXR(const std::string &path, const std::string &tmpPath,
+                     const ImageMetadata &metadata) const {
+    // Without crop information the data window is the whole image at the origin.
+    Bounds2i dataBounds = metadata.pixelBounds.value_or(Bounds2i(Point2i(0, 0), resolution));
+    Point2i full = metadata.fullResolution.value_or(dataBounds.pMax);
+    if (dataBounds.Diagonal() != Vector2i(resolution.x, resolution.y))
+        ThrowFileError(path, "metadata pixelBounds do not match the image resolution");
+
+    Imath::Box2i displayWindow(Imath::V2i(0, 0), Imath::V2i(full.x - 1, full.y - 1));
+    Imath::Box2i dataWindow(Imath::V2i(dataBounds.pMin.x, dataBounds.pMin.y),
+                            Imath::V2i(dataBounds.pMax.x - 1, dataBounds.pMax.y - 1));
+    Imf::Header header(displayWindow, dataWindow, 1.f, Imath::V2f(0, 0), 1.f, Imf::INCREASING_Y,
+                       Imf::ZIP_COMPRESSION);
+    header.insert("samplesPerPixel", Imf::IntAttribute(metadata.samplesPerPixel));
+    header.insert("renderTimeSeconds", Imf::DoubleAttribute(metadata.renderTimeSeconds));
+    if (!metadata.scene.empty()) header.insert("scene", Imf::StringAttribute(metadata.scene));
+    for (const auto &[key, value] : metadata.extra) {
+        // Overwriting a standard attribute (e.g. "channels") would corrupt the file.
+        if (header.find(key) != header.end())
+            ThrowFileError(path, "metadata key \"" + key + "\" collides with an EXR header attribute");
+        header.insert(key, Imf::StringAttribute(value));
+    }
+    const char *names[3] = {"R", "G", "B"};
+    for (const char *name : names) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+
+    // OpenEXR addresses the buffer by absolute data-window coordinates.
+    size_t xStride = 3 * sizeof(float), yStride = xStride * size_t(resolution.x);
+    char *base = reinterpret_cast<char *>(const_cast<Float *>(pixels.data())) -
+                 ptrdiff_t(dataBounds.pMin.x) * ptrdiff_t(xStride) -
+                 ptrdiff_t(dataBounds.pMin.y) * ptrdiff_t(yStride);
+    Imf::FrameBuffer frameBuffer;
+    for (int c = 0; c < 3; ++c)
+        frameBuffer.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+    try {
+        Imf::OutputFile file(tmpPath.c_str(), header);
+        file.setFrameBuffer(frameBuffer);
+        file.writePixels(resolution.y);
+    } catch (const std::exception &e) {
+        ThrowFileError(path, std::string("OpenEXR: ") + e.what());
+    }
+}
+
+void Image::WriteOIIO(const std::string &path, const std::string &tmpPath) const {
+    // The format follows the target's extension, not the temporary name's.
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
+    if (!out) ThrowFileError(path, "no image writer for this extension: " + OIIO::geterror());
+
+    std::vector<uint8_t> encoded(pixels.size());
+    for (size_t i = 0; i < pixels.size(); ++i) {
+        Float v = pixels[i] > 0 ? std::min<Float>(pixels[i], 1) : 0;  // NaN becomes 0 too
+        encoded[i] = uint8_t(std::lround(LinearToSRGB(v) * 255));
+    }
+    OIIO::ImageSpec spec(resolution.x, resolution.y, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    if (!out->open(tmpPath, spec) || !out->write_image(OIIO::TypeDesc::UINT8, encoded.data()) ||
+        !out->close())
+        ThrowFileError(path, "cannot write the image: " + out->geterror());
+}
+
+}  // namespace pbrt

@@ -1,0 +1,146 @@
+// RGB float images and their files (pbrt-v4's util/image.h, reduced to what the renderer uses:
+// three linear channels in 32-bit float, pbrt-v4's wrap modes and lookups).
+//
+// Values are always linear; sRGB encoding happens only at the 8-bit file boundary. Reading goes
+// through OpenImageIO (integer formats such as PNG, JPEG, TGA are sRGB-decoded, float formats
+// such as EXR, PFM, HDR are taken as linear). Writing EXR goes through OpenEXR (32-bit float RGB
+// with the metadata as header attributes); any other extension goes through OpenImageIO as 8-bit
+// sRGB. Files are written to a temporary name beside the target and renamed, so a failed write
+// never leaves a partial file. File errors throw std::runtime_error("<path>: error: <what>").
+//
+// This is a host type (the pixels live in a std::vector), like pbrt-v4's Image outside its GPU
+// build.
+#pragma once
+
+#include <pbrt_ext/pbrt.h>
+#include <pbrt_ext/util/bounds.h>
+#include <pbrt_ext/util/math.h>
+#include <pbrt_ext/util/spectrum.h>
+#include <pbrt_ext/util/vecmath.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pbrt {
+
+// The sRGB transfer function (IEC 61966-2-1), on [0, 1].
+PBRT_CPU_GPU inline Float SRGBToLinear(Float v) {
+    if (v <= 0.04045f) return v * (1 / 12.92f);
+    return std::pow((v + 0.055f) * (1 / 1.055f), 2.4f);
+}
+PBRT_CPU_GPU inline Float LinearToSRGB(Float v) {
+    if (v <= 0.0031308f) return 12.92f * v;
+    return 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
+}
+
+// What a lookup outside the image sees (pbrt-v4's WrapMode). OctahedralSphere continues an
+// equal-area octahedral environment map across its edges, which fold onto each other.
+enum class WrapMode { Black, Clamp, Repeat, OctahedralSphere };
+
+struct WrapMode2D {
+    PBRT_CPU_GPU WrapMode2D(WrapMode w) : wrap{w, w} {}
+    PBRT_CPU_GPU WrapMode2D(WrapMode x, WrapMode y) : wrap{x, y} {}
+    WrapMode wrap[2];
+};
+
+// Moves *p into the image according to wrapMode; false when the pixel is outside and the mode
+// is Black (the lookup is then zero). OctahedralSphere mirrors across the crossed edge and
+// flips the other coordinate, as pbrt-v4 does, and must be used on both axes.
+PBRT_CPU_GPU inline bool RemapPixelCoords(Point2i *p, Point2i resolution, WrapMode2D wrapMode) {
+    if (wrapMode.wrap[0] == WrapMode::OctahedralSphere) {
+        Point2i &q = *p;
+        if (q.x < 0 || q.x >= resolution.x) {
+            q.x = (q.x < 0) ? -q.x : 2 * resolution.x - 1 - q.x;
+            q.y = resolution.y - 1 - q.y;
+        }
+        if (q.y < 0 || q.y >= resolution.y) {
+            q.x = resolution.x - 1 - q.x;
+            q.y = (q.y < 0) ? -q.y : 2 * resolution.y - 1 - q.y;
+        }
+        // A mirror of a one-pixel axis would land outside it.
+        q.x = Clamp(q.x, 0, resolution.x - 1);
+        q.y = Clamp(q.y, 0, resolution.y - 1);
+        return true;
+    }
+    for (int c = 0; c < 2; ++c) {
+        if ((*p)[c] >= 0 && (*p)[c] < resolution[c]) continue;
+        switch (wrapMode.wrap[c]) {
+        case WrapMode::Repeat:
+            (*p)[c] = Mod((*p)[c], resolution[c]);
+            break;
+        case WrapMode::Clamp:
+            (*p)[c] = Clamp((*p)[c], 0, resolution[c] - 1);
+            break;
+        default:  // Black
+            return false;
+        }
+    }
+    return true;
+}
+
+// Written as header attributes of an EXR (pbrt-v4's ImageMetadata, reduced). fullResolution
+// and pixelBounds, when set, become the EXR display and data windows (a crop window renders a
+// sub-rectangle of the full image).
+struct ImageMetadata {
+    int samplesPerPixel = 0;
+    double renderTimeSeconds = 0;
+    std::string scene;
+    std::map<std::string, std::string> extra;
+    std::optional<Point2i> fullResolution;
+    std::optional<Bounds2i> pixelBounds;
+};
+
+class Image {
+  public:
+    static constexpr int NChannels() { return 3; }
+
+    Image() = default;
+    // Black; throws std::runtime_error for a negative resolution.
+    explicit Image(Point2i resolution);
+
+    Point2i Resolution() const { return resolution; }
+    bool Empty() const { return resolution.x <= 0 || resolution.y <= 0; }
+
+    // Pixel (0, 0) is the top-left corner of the file; c is 0 (red), 1 (green) or 2 (blue).
+    Float GetChannel(Point2i p, int c, WrapMode2D wrapMode = WrapMode::Clamp) const {
+        if (!RemapPixelCoords(&p, resolution, wrapMode)) return 0;
+        return pixels[PixelOffset(p) + c];
+    }
+    SampledSpectrum GetChannels(Point2i p, WrapMode2D wrapMode = WrapMode::Clamp) const {
+        if (!RemapPixelCoords(&p, resolution, wrapMode)) return SampledSpectrum(0.f);
+        size_t o = PixelOffset(p);
+        return SampledSpectrum(pixels[o], pixels[o + 1], pixels[o + 2]);
+    }
+    void SetChannel(Point2i p, int c, Float value) { pixels[PixelOffset(p) + c] = value; }
+
+    // Lookups at continuous coordinates st in [0, 1]^2 over the whole image (pixel centers at
+    // half-integers, as pbrt-v4).
+    Float LookupNearestChannel(Point2f st, int c, WrapMode2D wrapMode = WrapMode::Clamp) const;
+    SampledSpectrum LookupNearest(Point2f st, WrapMode2D wrapMode = WrapMode::Clamp) const;
+    Float BilerpChannel(Point2f st, int c, WrapMode2D wrapMode = WrapMode::Clamp) const;
+    SampledSpectrum Bilerp(Point2f st, WrapMode2D wrapMode = WrapMode::Clamp) const;
+
+    // The channel average per pixel, row-major (x fastest): the tabulated function that an
+    // image light's PiecewiseConstant2D samples, as pbrt-v4's GetSamplingDistribution for an
+    // equal-area parameterization.
+    std::vector<Float> GetSamplingDistribution() const;
+
+    static Image Read(const std::string &path);
+    void Write(const std::string &path, const ImageMetadata &metadata = {}) const;
+
+  private:
+    void WriteEXR(const std::string &path, const std::string &tmpPath,
+                  const ImageMetadata &metadata) const;
+    void WriteOIIO(const std::string &path, const std::string &tmpPath) const;
+
+    size_t PixelOffset(Point2i p) const {
+        return 3 * (size_t(p.y) * size_t(resolution.x) + size_t(p.x));
+    }
+
+    Point2i resolution{0, 0};
+    std::vector<Float> pixels;
+};
+
+}  // namespace pbrt

@@ -1,0 +1,211 @@
+// Images: lossless EXR round trips with metadata, sRGB 8-bit files within quantization, pbrt-v4's
+// wrap modes and lookups, and errors that name the file and leave no partial output.
+#include <pbrt_ext/util/image.h>
+
+#include <ImfChannelList.h>
+#include <ImfDoubleAttribute.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfIntAttribute.h>
+#include <ImfStringAttribute.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+namespace pbrt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh directory per test, removed afterwards.
+class ImageFiles : public testing::Test {
+  protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() /
+              ("pbrt_image_test_" + std::to_string(::getpid()) + "_" +
+               testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    std::string Path(const std::string &name) const { return (dir / name).string(); }
+    int FilesInDir() const { return int(std::distance(fs::directory_iterator(dir), fs::directory_iterator())); }
+
+    fs::path dir;
+};
+
+// Values spanning what a render produces: tiny, above 1, exact zeros, fixed seed.
+Image TestImage(Point2i res, Float maxValue, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<Float> u(0, maxValue);
+    Image image(res);
+    for (int y = 0; y < res.y; ++y)
+        for (int x = 0; x < res.x; ++x)
+            for (int c = 0; c < 3; ++c) image.SetChannel(Point2i(x, y), c, (x + y + c) % 7 ? u(rng) : 0);
+    return image;
+}
+
+TEST(ImageColor, SRGBTransferFunctionsInvert) {
+    for (int i = 0; i <= 1000; ++i) {
+        Float v = i / 1000.f;
+        EXPECT_NEAR(SRGBToLinear(LinearToSRGB(v)), v, 2e-6f);
+    }
+    EXPECT_NEAR(SRGBToLinear(0.5f), 0.21404f, 1e-4f);  // the standard's mid-gray
+}
+
+TEST_F(ImageFiles, ExrRoundTripIsExactWithMetadata) {
+    Image image = TestImage(Point2i(17, 11), 20, 1);
+    ImageMetadata md;
+    md.samplesPerPixel = 64;
+    md.renderTimeSeconds = 12.5;
+    md.scene = "scenes/cornell.pbrt";
+    md.extra["integrator"] = "path";
+    std::string path = Path("out.exr");
+    image.Write(path, md);
+
+    Image back = Image::Read(path);
+    ASSERT_EQ(back.Resolution(), image.Resolution());
+    for (int y = 0; y < 11; ++y)
+        for (int x = 0; x < 17; ++x)
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(back.GetChannel(Point2i(x, y), c), image.GetChannel(Point2i(x, y), c));
+
+    Imf::InputFile file(path.c_str());
+    const Imf::Header &h = file.header();
+    EXPECT_EQ(h.typedAttribute<Imf::IntAttribute>("samplesPerPixel").value(), 64);
+    EXPECT_EQ(h.typedAttribute<Imf::DoubleAttribute>("renderTimeSeconds").value(), 12.5);
+    EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("scene").value(), "scenes/cornell.pbrt");
+    EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("integrator").value(), "path");
+    EXPECT_EQ(h.channels().findChannel("R")->type, Imf::FLOAT);
+    EXPECT_EQ(FilesInDir(), 1);  // no temporary left behind
+}
+
+TEST_F(ImageFiles, ExrCropSetsDataAndDisplayWindows) {
+    Image crop = TestImage(Point2i(4, 3), 1, 2);
+    ImageMetadata md;
+    md.fullResolution = Point2i(10, 8);
+    md.pixelBounds = Bounds2i(Point2i(5, 2), Point2i(9, 5));
+    std::string path = Path("crop.exr");
+    crop.Write(path, md);
+    Imf::InputFile file(path.c_str());
+    EXPECT_EQ(file.header().displayWindow().max, Imath::V2i(9, 7));
+    EXPECT_EQ(file.header().dataWindow().min, Imath::V2i(5, 2));
+    EXPECT_EQ(file.header().dataWindow().max, Imath::V2i(8, 4));
+    Image back = Image::Read(path);
+    ASSERT_EQ(back.Resolution(), Point2i(4, 3));
+    EXPECT_EQ(back.GetChannel(Point2i(3, 2), 1), crop.GetChannel(Point2i(3, 2), 1));
+
+    md.pixelBounds = Bounds2i(Point2i(0, 0), Point2i(5, 3));  // does not match 4x3
+    EXPECT_THROW(crop.Write(Path("bad.exr"), md), std::runtime_error);
+}
+
+TEST_F(ImageFiles, PngRoundTripWithinQuantization) {
+    Image image = TestImage(Point2i(9, 5), 1.5f, 3);
+    image.SetChannel(Point2i(0, 0), 0, -1);  // clamped to black
+    std::string path = Path("out.png");
+    image.Write(path);
+    Image back = Image::Read(path);
+    ASSERT_EQ(back.Resolution(), image.Resolution());
+    for (int y = 0; y < 5; ++y)
+        for (int x = 0; x < 9; ++x)
+            for (int c = 0; c < 3; ++c) {
+                Float v = Clamp(image.GetChannel(Point2i(x, y), c), 0, 1);
+                Float encoded = LinearToSRGB(v);
+                // Half an 8-bit step in the encoded domain, mapped back through the curve.
+                Float tol = SRGBToLinear(std::min(1.f, encoded + 0.5f / 255)) - v + 1e-6f;
+                EXPECT_NEAR(back.GetChannel(Point2i(x, y), c), v, tol) << x << "," << y << "," << c;
+            }
+    EXPECT_EQ(back.GetChannel(Point2i(0, 0), 0), 0);
+}
+
+TEST_F(ImageFiles, ReadErrorsNameTheFile) {
+    std::string missing = Path("missing.exr");
+    try {
+        Image::Read(missing);
+        FAIL() << "no exception";
+    } catch (const std::runtime_error &e) {
+        EXPECT_EQ(std::string(e.what()).rfind(missing + ": error: ", 0), 0u) << e.what();
+    }
+    std::ofstream(Path("garbage.png")) << "not a png";
+    EXPECT_THROW(Image::Read(Path("garbage.png")), std::runtime_error);
+}
+
+TEST_F(ImageFiles, FailedWriteLeavesNoFileAndKeepsTheOldOne) {
+    Image image = TestImage(Point2i(4, 4), 1, 4);
+    EXPECT_THROW(image.Write(Path("out.unknownext")), std::runtime_error);
+    EXPECT_THROW(image.Write(Path("no/such/dir/out.exr")), std::runtime_error);
+    EXPECT_EQ(FilesInDir(), 0);
+
+    std::string path = Path("keep.exr");
+    image.Write(path);
+    auto sizeBefore = fs::file_size(path);
+    ImageMetadata bad;
+    bad.extra["channels"] = "x";  // would clobber the EXR channel list
+    EXPECT_THROW(Image(Point2i(8, 8)).Write(path, bad), std::runtime_error);
+    EXPECT_EQ(fs::file_size(path), sizeBefore);
+    EXPECT_EQ(Image::Read(path).Resolution(), Point2i(4, 4));
+    EXPECT_EQ(FilesInDir(), 1);
+    EXPECT_THROW(Image().Write(Path("empty.png")), std::runtime_error);
+}
+
+TEST(ImageLookup, WrapModes) {
+    Point2i res(4, 3);
+    Point2i p(-1, 5);
+    EXPECT_FALSE(RemapPixelCoords(&p, res, WrapMode::Black));
+    p = Point2i(-1, 5);
+    ASSERT_TRUE(RemapPixelCoords(&p, res, WrapMode::Clamp));
+    EXPECT_EQ(p, Point2i(0, 2));
+    p = Point2i(-1, 5);
+    ASSERT_TRUE(RemapPixelCoords(&p, res, WrapMode::Repeat));
+    EXPECT_EQ(p, Point2i(3, 2));
+    p = Point2i(6, -1);
+    ASSERT_TRUE(RemapPixelCoords(&p, res, WrapMode2D(WrapMode::Clamp, WrapMode::Repeat)));
+    EXPECT_EQ(p, Point2i(3, 2));
+}
+
+TEST(ImageLookup, OctahedralWrapFoldsAcrossEdges) {
+    Point2i res(8, 8);
+    // Crossing the left edge mirrors x and flips y (pbrt-v4's convention).
+    Point2i p(-1, 2);
+    ASSERT_TRUE(RemapPixelCoords(&p, res, WrapMode::OctahedralSphere));
+    EXPECT_EQ(p, Point2i(1, 5));
+    p = Point2i(8, 0);
+    RemapPixelCoords(&p, res, WrapMode::OctahedralSphere);
+    EXPECT_EQ(p, Point2i(7, 7));
+    p = Point2i(3, -1);
+    RemapPixelCoords(&p, res, WrapMode::OctahedralSphere);
+    EXPECT_EQ(p, Point2i(4, 1));
+    p = Point2i(3, 8);
+    RemapPixelCoords(&p, res, WrapMode::OctahedralSphere);
+    EXPECT_EQ(p, Point2i(4, 7));
+    p = Point2i(-1, -1);  // a corner stays inside a one-pixel image
+    RemapPixelCoords(&p, Point2i(1, 1), WrapMode::OctahedralSphere);
+    EXPECT_EQ(p, Point2i(0, 0));
+}
+
+TEST(ImageLookup, BilerpInterpolatesBetweenCenters) {
+    Image image(Point2i(2, 1));
+    image.SetChannel(Point2i(0, 0), 0, 1);
+    image.SetChannel(Point2i(1, 0), 0, 3);
+    image.SetChannel(Point2i(1, 0), 2, 5);
+    EXPECT_FLOAT_EQ(image.BilerpChannel(Point2f(0.25f, 0.5f), 0), 1);  // pixel center
+    EXPECT_FLOAT_EQ(image.BilerpChannel(Point2f(0.5f, 0.5f), 0), 2);   // halfway
+    EXPECT_FLOAT_EQ(image.Bilerp(Point2f(0.75f, 0.5f))[2], 5);
+    EXPECT_FLOAT_EQ(image.LookupNearestChannel(Point2f(0.6f, 0.1f), 0), 3);
+    EXPECT_FLOAT_EQ(image.LookupNearest(Point2f(0.4f, 0.9f))[0], 1);
+    EXPECT_FLOAT_EQ(image.BilerpChannel(Point2f(0.0f, 0.5f), 0, WrapMode::Black), 0.5f);
+    std::vector<Float> d = image.GetSamplingDistribution();
+    ASSERT_EQ(d.size(), 2u);
+    EXPECT_FLOAT_EQ(d[0], 1.f / 3);
+    EXPECT_FLOAT_EQ(d[1], 8.f / 3);
+}
+
+TEST(ImageLookup, NegativeResolutionThrows) {
+    EXPECT_THROW(Image(Point2i(-1, 4)), std::runtime_error);
+    EXPECT_TRUE(Image(Point2i(0, 4)).Empty());
+}
+
+}  // namespace
+}  // namespace pbrt
