@@ -1,4 +1,4 @@
-#include <pbrt_ext/util/image.h>
+#include "pbrt_ext/util/image.h"
 
 #include <ImfChannelList.h>
 #include <ImfDoubleAttribute.h>
@@ -8,6 +8,7 @@
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 #include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
 
 #include <unistd.h>
 
@@ -39,8 +40,7 @@ std::string LowercaseExtension(const std::string &path) {
 std::string TemporaryPathFor(const std::string &path) {
     static std::atomic<unsigned> counter{0};
     std::filesystem::path p(path);
-    std::string name = "." + p.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                       std::to_string(counter++);
+    std::string name = fmt::format(".{}.tmp-{}-{}", p.filename().string(), ::getpid(), counter++);
     return (p.parent_path() / name).string();
 }
 

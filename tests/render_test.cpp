@@ -1,0 +1,231 @@
+// End to end: analytic scenes through every integrator strategy, the strategies against each other,
+// thread-count invariance, and no NaN anywhere.
+#include "scenes.h"
+
+#include "pbrt_ext/bxdfs/fabric_albedo.h"
+#include "pbrt_ext/render.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace pbrt;
+using namespace pbrt::testscenes;
+
+namespace {
+
+constexpr PathStrategy kStrategies[] = {PathStrategy::MIS, PathStrategy::BSDF, PathStrategy::Light};
+// Estimates within this many standard errors of the analytic value pass (two-sided 3σ: a wrong
+// implementation biased by more than the noise fails; a correct one fails 0.3 % of the time per
+// check, and the seeds are fixed).
+constexpr double kSigmas = 3;
+// Float arithmetic along a path: the floor of the tolerance where the estimator has no variance.
+constexpr double kFloatFloor = 1e-5;
+
+struct Estimate {
+    double mean, standardError;
+};
+
+// Li along one ray, averaged over n independent samples, with its standard error.
+Estimate EstimateLi(const Scene &scene, PathIntegratorOptions options, const Ray &ray, int n,
+                    int channel = 0) {
+    PathIntegrator integrator(scene, options);
+    Sampler sampler = IndependentSampler(n, 7);
+    RayCounts rays;
+    double sum = 0, sum2 = 0;
+    for (int i = 0; i < n; ++i) {
+        sampler.StartPixelSample(Point2i(3, 5), i);
+        double L = integrator.Li(ray, sampler, rays)[channel];
+        sum += L;
+        sum2 += L * L;
+    }
+    double mean = sum / n, variance = std::max(0.0, sum2 / n - mean * mean);
+    return {mean, std::sqrt(variance / (n - 1))};
+}
+
+void ExpectNear(Estimate e, double expected, const std::string &what) {
+    EXPECT_NEAR(e.mean, expected, kSigmas * e.standardError + kFloatFloor * std::abs(expected))
+        << what << ": standard error " << e.standardError;
+}
+
+// A sphere of material m alone in a uniform white environment.
+std::unique_ptr<Scene> SphereInFurnace(Material m, Float environment) {
+    SceneBuilder builder(LookingAt(Point3f(0, 0, 5), Point3f(0, 0, 0), 30, Point2i(8, 8)),
+                         BoxFilteredFilm(Point2i(8, 8)), IndependentSampler(1));
+    builder.AddSphere(UnitSphereAt(Point3f(0, 0, 0)), builder.AddMaterial(std::move(m)));
+    builder.AddLight(UniformInfiniteLight(SampledSpectrum(environment), 1));
+    return builder.Build();
+}
+
+// Rays from a camera position toward several points of the unit sphere at the origin.
+std::vector<Ray> RaysAtUnitSphere() {
+    std::vector<Ray> rays;
+    Point3f eye(0.3f, 0.2f, 5);
+    for (Point3f target : {Point3f(0, 0, 1), Point3f(0.6f, 0, 0.8f), Point3f(-0.5f, 0.7f, 0.5f),
+                           Point3f(0.9f, 0.3f, 0.31f)})
+        rays.push_back(Ray(eye, Normalize(target - eye)));
+    return rays;
+}
+
+bool AllPixelsFinite(const RGBFilm &film) {
+    for (Point2i p : film.PixelBounds()) {
+        SampledSpectrum rgb = film.GetPixelRGB(p);
+        for (int c = 0; c < 3; ++c)
+            if (!std::isfinite(rgb[c]))
+                return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+TEST(RenderFurnace, DiffuseSphereReflectsAlbedoTimesEnvironment) {
+    // A convex diffuse surface sees only the environment: Lo = ρ L exactly.
+    constexpr Float rho = 0.6f, L = 1.5f;
+    auto scene = SphereInFurnace(DiffuseMaterial{SampledSpectrum(rho)}, L);
+    for (PathStrategy strategy : kStrategies)
+        for (const Ray &ray : RaysAtUnitSphere())
+            ExpectNear(EstimateLi(*scene, {5, false, strategy}, ray, 20000), rho * L,
+                       "diffuse, strategy " + ToString(strategy));
+}
+
+TEST(RenderFurnace, FabricSphereReflectsItsDirectionalAlbedoTimesEnvironment) {
+    // Lo(wo) = a(wo) L with a the directional albedo at the hit, by quadrature (docs/fabric.md).
+    constexpr Float L = 2;
+    FabricMaterial fabric;
+    fabric.reflectance = SampledSpectrum(0.9f);
+    fabric.roughness = 0.3f;
+    fabric.threadAngle = 30;
+    auto scene = SphereInFurnace(fabric, L);
+    for (const Ray &ray : RaysAtUnitSphere()) {
+        pstd::optional<ShapeIntersection> hit = scene->Intersect(ray);
+        ASSERT_TRUE(hit);
+        const SurfaceInteraction &si = hit->intr;
+        // The same BxDF the material makes, in the same shading frame.
+        BSDF frame(si.shading.n, si.shading.dpdu, DiffuseBxDF(SampledSpectrum(1)));
+        FabricBxDF bxdf(SampledSpectrum(0.9f), 0.3f, FabricBxDF::ThreadDirection(30, 0));
+        double expected = FabricDirectionalAlbedo(bxdf, frame.RenderToLocal(si.wo)) * L;
+        for (PathStrategy strategy : kStrategies)
+            ExpectNear(EstimateLi(*scene, {5, false, strategy}, ray, 20000), expected,
+                       "fabric, strategy " + ToString(strategy));
+    }
+}
+
+TEST(RenderDirect, EmitterSeenDirectlyIsItsRadiance) {
+    SceneBuilder builder(LookingAt(Point3f(0, 0, 3), Point3f(0, 0, 0), 20, Point2i(8, 8)),
+                         BoxFilteredFilm(Point2i(8, 8)), IndependentSampler(4));
+    int black = builder.AddMaterial(DiffuseMaterial{SampledSpectrum(0.f)});
+    builder.AddTriangleMesh(Rectangle(-5, 5, -5, 5, 0), black,
+                            AreaLightDescription{SampledSpectrum(2, 3, 4), 1.5f, false});
+    auto scene = builder.Build();
+    for (PathStrategy strategy : kStrategies) {
+        scene->integratorOptions.strategy = strategy;
+        scene->film = BoxFilteredFilm(Point2i(8, 8));
+        Render(*scene, {1, true});
+        for (Point2i p : scene->film.PixelBounds())
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(scene->film.GetPixelRGB(p)[c], 1.5 * (2 + c), 1e-5)
+                    << "strategy " << ToString(strategy);
+    }
+}
+
+TEST(RenderDirect, OneSidedEmitterIsDarkFromBehind) {
+    SceneBuilder builder(LookingAt(Point3f(0, 0, 3), Point3f(0, 0, 0), 20, Point2i(4, 4)),
+                         BoxFilteredFilm(Point2i(4, 4)), IndependentSampler(4));
+    int black = builder.AddMaterial(DiffuseMaterial{SampledSpectrum(0.f)});
+    builder.AddTriangleMesh(Rectangle(-5, 5, -5, 5, 0, true), black,
+                            AreaLightDescription{SampledSpectrum(1), 1, false});
+    auto scene = builder.Build();
+    Render(*scene, {1, true});
+    for (Point2i p : scene->film.PixelBounds())
+        EXPECT_EQ(scene->film.GetPixelRGB(p)[0], 0);
+}
+
+TEST(RenderDirect, DiffusePlaneUnderDistantLightIsReflectanceTimesIrradianceOverPi) {
+    // Lo = R E / π, E = L cos θ: the light comes from 40° off the normal; nothing else is visible.
+    constexpr Float R = 0.5f, L = 3, theta = 40;
+    SceneBuilder builder(LookingAt(Point3f(0, 0, 4), Point3f(0, 0, 0), 20, Point2i(8, 8)),
+                         BoxFilteredFilm(Point2i(8, 8)), IndependentSampler(2));
+    builder.AddTriangleMesh(Rectangle(-20, 20, -20, 20, 0),
+                            builder.AddMaterial(DiffuseMaterial{SampledSpectrum(R)}));
+    // DistantLight sends light from worldFromLight(0, 0, 1): tilt +z by θ about x.
+    builder.AddLight(DistantLight(RotateX(theta), SampledSpectrum(L), 1));
+    auto scene = builder.Build();
+    // A delta light is found only by light sampling: the mis and light strategies.
+    for (PathStrategy strategy : {PathStrategy::MIS, PathStrategy::Light}) {
+        scene->integratorOptions.strategy = strategy;
+        scene->film = BoxFilteredFilm(Point2i(8, 8));
+        RenderStatistics stats = Render(*scene, {2, true});
+        EXPECT_EQ(stats.discardedSamples, 0);
+        double expected = R * L * std::cos(Radians(theta)) / Pi;
+        for (Point2i p : scene->film.PixelBounds())
+            EXPECT_NEAR(scene->film.GetPixelRGB(p)[0], expected, 1e-5 * expected);
+    }
+}
+
+// View factor from a point to a parallel rectangle of sides a x b at height h, the point below one
+// corner (Howell's catalogue, configuration B-3).
+double CornerViewFactor(double a, double b, double h) {
+    double X = a / h, Y = b / h, x = std::sqrt(1 + X * X), y = std::sqrt(1 + Y * Y);
+    return (X / x * std::atan(Y / x) + Y / y * std::atan(X / y)) / (2 * M_PI);
+}
+
+TEST(RenderDirect, DiffusePointUnderRectangularEmitterIsReflectanceTimesViewFactor) {
+    // A 2 x 2 emitter 0.5 above the point: E = π Le F, Lo = R E / π = R Le F, F from four corner
+    // rectangles of 1 x 1. Close and large, both estimators carry weight: MIS must split it right.
+    constexpr Float R = 0.7f, Le = 2;
+    SceneBuilder builder(LookingAt(Point3f(0, 0, 4), Point3f(0, 0, 0), 20, Point2i(4, 4)),
+                         BoxFilteredFilm(Point2i(4, 4)), IndependentSampler(1));
+    builder.AddTriangleMesh(Rectangle(-20, 20, -20, 20, 0),
+                            builder.AddMaterial(DiffuseMaterial{SampledSpectrum(R)}));
+    int black = builder.AddMaterial(DiffuseMaterial{SampledSpectrum(0.f)});
+    builder.AddTriangleMesh(Rectangle(-1, 1, -1, 1, 0.5f, true), black,
+                            AreaLightDescription{SampledSpectrum(Le), 1, false});
+    auto scene = builder.Build();
+    double expected = R * Le * 4 * CornerViewFactor(1, 1, 0.5);
+    Ray down(Point3f(0, 0, 0.25f), Vector3f(0, 0, -1));
+    for (PathStrategy strategy : kStrategies)
+        ExpectNear(EstimateLi(*scene, {1, false, strategy}, down, 40000), expected,
+                   "strategy " + ToString(strategy));
+}
+
+TEST(RenderStrategies, AgreeWithinNoiseWithAnAreaLightAndFabric) {
+    // The Cornell box with fabric boxes: the image mean of each strategy, against MIS's. The
+    // difference of two independent renders' means has the standard error σ_d/√pixels, estimated
+    // from the per-pixel differences; 4 of them is the threshold (pixels are nearly independent).
+    FabricMaterial fabric;
+    fabric.reflectance = SampledSpectrum(0.8f, 0.7f, 0.5f);
+    fabric.roughness = 0.4f;
+    auto render = [&](PathStrategy strategy) {
+        auto scene = CornellBox(Point2i(32, 32), 256, {5, false, strategy}, fabric);
+        Render(*scene, {0, true});
+        EXPECT_TRUE(AllPixelsFinite(scene->film));
+        return scene;
+    };
+    auto mis = render(PathStrategy::MIS);
+    for (PathStrategy strategy : {PathStrategy::BSDF, PathStrategy::Light}) {
+        auto other = render(strategy);
+        double sum = 0, sum2 = 0, n = 0;
+        for (Point2i p : mis->film.PixelBounds()) {
+            double d = mis->film.GetPixelRGB(p).Average() - other->film.GetPixelRGB(p).Average();
+            sum += d;
+            sum2 += d * d;
+            ++n;
+        }
+        double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / (n - 1));
+        EXPECT_LT(std::abs(mean), 4 * se) << "mis vs " << ToString(strategy);
+    }
+}
+
+TEST(RenderDeterminism, SameImageForOneAndTwoThreads) {
+    auto one = CornellBox(Point2i(32, 32), 8, {});
+    auto two = CornellBox(Point2i(32, 32), 8, {});
+    Render(*one, {1, true});
+    Render(*two, {2, true});
+    int lit = 0;
+    for (Point2i p : one->film.PixelBounds()) {
+        ASSERT_EQ(one->film.GetPixelRGB(p), two->film.GetPixelRGB(p)) << p.x << ", " << p.y;
+        lit += one->film.GetPixelRGB(p).MaxComponentValue() > 0;
+    }
+    EXPECT_GT(lit, 32 * 32 / 2);  // the light does light the box
+}
