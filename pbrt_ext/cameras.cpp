@@ -1,4 +1,4 @@
-#include <pbrt_ext/cameras.h>
+#include "pbrt_ext/cameras.h"
 
 #include <cstdio>
 

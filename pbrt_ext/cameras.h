@@ -7,16 +7,16 @@
 // so cameras take worldFromCamera (the inverse of a scene file's LookAt/CTM, cameraFromWorld).
 #pragma once
 
-#include <pbrt_ext/filters.h>
-#include <pbrt_ext/pbrt.h>
-#include <pbrt_ext/ray.h>
-#include <pbrt_ext/samplers.h>
-#include <pbrt_ext/util/bounds.h>
-#include <pbrt_ext/util/pstd.h>
-#include <pbrt_ext/util/sampling.h>
-#include <pbrt_ext/util/spectrum.h>
-#include <pbrt_ext/util/transform.h>
-#include <pbrt_ext/util/vecmath.h>
+#include "pbrt_ext/filters.h"
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/ray.h"
+#include "pbrt_ext/samplers.h"
+#include "pbrt_ext/util/bounds.h"
+#include "pbrt_ext/util/pstd.h"
+#include "pbrt_ext/util/sampling.h"
+#include "pbrt_ext/util/spectrum.h"
+#include "pbrt_ext/util/transform.h"
+#include "pbrt_ext/util/vecmath.h"
 
 #include <string>
 #include <type_traits>

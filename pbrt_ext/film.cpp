@@ -1,4 +1,4 @@
-#include <pbrt_ext/film.h>
+#include "pbrt_ext/film.h"
 
 #include <cmath>
 #include <cstdio>

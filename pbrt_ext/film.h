@@ -7,13 +7,13 @@
 // write distinct pixels, as tiles do.
 #pragma once
 
-#include <pbrt_ext/filters.h>
-#include <pbrt_ext/pbrt.h>
-#include <pbrt_ext/util/bounds.h>
-#include <pbrt_ext/util/image.h>
-#include <pbrt_ext/util/math.h>
-#include <pbrt_ext/util/spectrum.h>
-#include <pbrt_ext/util/vecmath.h>
+#include "pbrt_ext/filters.h"
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/bounds.h"
+#include "pbrt_ext/util/image.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/spectrum.h"
+#include "pbrt_ext/util/vecmath.h"
 
 #include <cassert>
 #include <string>

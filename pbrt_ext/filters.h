@@ -11,11 +11,11 @@
 // Host types: the tabulated samplers own heap tables (as pbrt-v4's do through its allocator).
 #pragma once
 
-#include <pbrt_ext/pbrt.h>
-#include <pbrt_ext/util/bounds.h>
-#include <pbrt_ext/util/math.h>
-#include <pbrt_ext/util/sampling.h>
-#include <pbrt_ext/util/vecmath.h>
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/bounds.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/sampling.h"
+#include "pbrt_ext/util/vecmath.h"
 
 #include <cmath>
 #include <string>

@@ -4,21 +4,69 @@
 
 namespace pbrt {
 
-BxDF DiffuseMaterial::GetBxDF(const TextureEvalContext &ctx) const {
-    return DiffuseBxDF(Clamp(reflectance.Evaluate(ctx), Float(0), Float(1)));
-}
+namespace {
 
-BxDF ConductorMaterial::GetBxDF(const TextureEvalContext &ctx) const {
+// TR microfacets from two roughness textures, optionally remapped (pbrt-v4's remaproughness).
+TrowbridgeReitzDistribution Microfacets(const FloatTexture &uRoughness,
+                                        const FloatTexture &vRoughness, bool remap,
+                                        const TextureEvalContext &ctx) {
     Float u = uRoughness.Evaluate(ctx), v = vRoughness.Evaluate(ctx);
-    if (remapRoughness) {
+    if (remap) {
         u = TrowbridgeReitzDistribution::RoughnessToAlpha(u);
         v = TrowbridgeReitzDistribution::RoughnessToAlpha(v);
     }
-    return ConductorBxDF(TrowbridgeReitzDistribution(u, v), eta.Evaluate(ctx), k.Evaluate(ctx));
+    return TrowbridgeReitzDistribution(u, v);
+}
+
+SampledSpectrum Reflectance(const SpectrumTexture &texture, const TextureEvalContext &ctx) {
+    return Clamp(texture.Evaluate(ctx), Float(0), Float(1));
+}
+
+}  // namespace
+
+BxDF DiffuseMaterial::GetBxDF(const TextureEvalContext &ctx) const {
+    return DiffuseBxDF(Reflectance(reflectance, ctx));
+}
+
+
+BxDF ConductorMaterial::GetBxDF(const TextureEvalContext &ctx) const {
+    return ConductorBxDF(Microfacets(uRoughness, vRoughness, remapRoughness, ctx), eta.Evaluate(ctx),
+                         k.Evaluate(ctx));
+}
+
+BxDF DielectricMaterial::GetBxDF(const TextureEvalContext &ctx) const {
+    return DielectricBxDF(eta, Microfacets(uRoughness, vRoughness, remapRoughness, ctx));
+}
+
+BxDF ThinDielectricMaterial::GetBxDF(const TextureEvalContext &) const {
+    return ThinDielectricBxDF(eta);
+}
+
+BxDF DiffuseTransmissionMaterial::GetBxDF(const TextureEvalContext &ctx) const {
+    return DiffuseTransmissionBxDF(Reflectance(reflectance, ctx) * scale,
+                                   Reflectance(transmittance, ctx) * scale);
+}
+
+BxDF CoatedDiffuseMaterial::GetBxDF(const TextureEvalContext &ctx) const {
+    return CoatedDiffuseBxDF(DielectricBxDF(eta, Microfacets(uRoughness, vRoughness,
+                                                             remapRoughness, ctx)),
+                             DiffuseBxDF(Reflectance(reflectance, ctx)),
+                             layer.thickness.Evaluate(ctx), layer.albedo.Evaluate(ctx),
+                             layer.g.Evaluate(ctx), layer.maxDepth, layer.nSamples);
+}
+
+BxDF CoatedConductorMaterial::GetBxDF(const TextureEvalContext &ctx) const {
+    DielectricBxDF coat(interfaceEta, Microfacets(interfaceURoughness, interfaceVRoughness,
+                                                  remapRoughness, ctx));
+    ConductorBxDF base(Microfacets(conductor.uRoughness, conductor.vRoughness,
+                                   conductor.remapRoughness, ctx),
+                       conductor.eta.Evaluate(ctx), conductor.k.Evaluate(ctx));
+    return CoatedConductorBxDF(coat, base, layer.thickness.Evaluate(ctx), layer.albedo.Evaluate(ctx),
+                               layer.g.Evaluate(ctx), layer.maxDepth, layer.nSamples);
 }
 
 BxDF FabricMaterial::GetBxDF(const TextureEvalContext &ctx) const {
-    return FabricBxDF(Clamp(reflectance.Evaluate(ctx), Float(0), Float(1)), roughness.Evaluate(ctx),
+    return FabricBxDF(Reflectance(reflectance, ctx), roughness.Evaluate(ctx),
                       FabricBxDF::ThreadDirection(threadAngle, threadElevation), sampling,
                       normalization);
 }

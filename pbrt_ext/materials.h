@@ -29,6 +29,57 @@ struct ConductorMaterial {
     BxDF GetBxDF(const TextureEvalContext &ctx) const;
 };
 
+// Roughness as for ConductorMaterial; eta is a single index (RGB rendering has no dispersion).
+struct DielectricMaterial {
+    Float eta = 1.5f;
+    FloatTexture uRoughness = 0, vRoughness = 0;
+    bool remapRoughness = true;
+
+    BxDF GetBxDF(const TextureEvalContext &ctx) const;
+};
+
+struct ThinDielectricMaterial {
+    Float eta = 1.5f;
+
+    BxDF GetBxDF(const TextureEvalContext &ctx) const;
+};
+
+struct DiffuseTransmissionMaterial {
+    SpectrumTexture reflectance = SampledSpectrum(0.25f), transmittance = SampledSpectrum(0.25f);
+    Float scale = 1;
+
+    BxDF GetBxDF(const TextureEvalContext &ctx) const;
+};
+
+// The parameters of pbrt-v4's layered materials: a medium of the given thickness, albedo and
+// Henyey-Greenstein g between the interfaces, walked with at most maxDepth bounces, nSamples times.
+struct LayerParameters {
+    FloatTexture thickness = 0.01f;
+    SpectrumTexture albedo = SampledSpectrum(0.f);
+    FloatTexture g = 0;
+    int maxDepth = 10, nSamples = 1;
+};
+
+struct CoatedDiffuseMaterial {
+    SpectrumTexture reflectance = SampledSpectrum(0.5f);
+    FloatTexture uRoughness = 0, vRoughness = 0;
+    Float eta = 1.5f;
+    bool remapRoughness = true;
+    LayerParameters layer;
+
+    BxDF GetBxDF(const TextureEvalContext &ctx) const;
+};
+
+struct CoatedConductorMaterial {
+    FloatTexture interfaceURoughness = 0, interfaceVRoughness = 0;
+    Float interfaceEta = 1.5f;
+    ConductorMaterial conductor;
+    bool remapRoughness = true;
+    LayerParameters layer;
+
+    BxDF GetBxDF(const TextureEvalContext &ctx) const;
+};
+
 // Our extension: the DreamWorks fabric lobe (pbrt_ext/bxdfs/fabric.h).
 struct FabricMaterial {
     SpectrumTexture reflectance = SampledSpectrum(0.5f);
@@ -42,7 +93,10 @@ struct FabricMaterial {
 
 class Material {
   public:
-    using Variant = std::variant<DiffuseMaterial, ConductorMaterial, FabricMaterial>;
+    using Variant =
+        std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, ThinDielectricMaterial,
+                     DiffuseTransmissionMaterial, CoatedDiffuseMaterial, CoatedConductorMaterial,
+                     FabricMaterial>;
     template <typename T>
     Material(T material) : material(std::move(material)) {}
 

@@ -1,6 +1,6 @@
-#include <pbrt_ext/samplers.h>
+#include "pbrt_ext/samplers.h"
 
-#include <pbrt_ext/util/log.h>
+#include "pbrt_ext/util/log.h"
 
 #include <bit>
 #include <stdexcept>

@@ -7,10 +7,11 @@
 // copy.
 #pragma once
 
-#include <pbrt_ext/pbrt.h>
-#include <pbrt_ext/util/math.h>
-#include <pbrt_ext/util/rng.h>
-#include <pbrt_ext/util/vecmath.h>
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/hash.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/rng.h"
+#include "pbrt_ext/util/vecmath.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -23,53 +24,7 @@
 
 namespace pbrt {
 
-// ---- Hashing and bit manipulation (pbrt-v4's util/hash.h and util/lowdiscrepancy.h) -------
-
-// A 64-bit finalizer: every input bit affects every output bit.
-PBRT_CPU_GPU inline uint64_t MixBits(uint64_t v) {
-    v ^= (v >> 31);
-    v *= 0x7fb5d329728ea185ULL;
-    v ^= (v >> 27);
-    v *= 0x81dadef4bc2dd44dULL;
-    v ^= (v >> 33);
-    return v;
-}
-
-// MurmurHash64A (Austin Appleby, public domain) of a byte string.
-PBRT_CPU_GPU inline uint64_t MurmurHash64A(const unsigned char *key, size_t len, uint64_t seed) {
-    const uint64_t m = 0xc6a4a7935bd1e995ULL;
-    const int r = 47;
-    uint64_t h = seed ^ (len * m);
-    size_t nBlocks = len / 8;
-    for (size_t i = 0; i < nBlocks; ++i) {
-        uint64_t k;
-        std::memcpy(&k, key + 8 * i, 8);
-        k *= m;
-        k ^= k >> r;
-        k *= m;
-        h ^= k;
-        h *= m;
-    }
-    size_t tail = len & 7;
-    if (tail != 0) {
-        for (size_t i = 0; i < tail; ++i) h ^= uint64_t(key[8 * nBlocks + i]) << (8 * i);
-        h *= m;
-    }
-    h ^= h >> r;
-    h *= m;
-    h ^= h >> r;
-    return h;
-}
-
-// The hash of the arguments' bytes laid end to end, as pbrt-v4's Hash(args...).
-template <typename... Args>
-PBRT_CPU_GPU uint64_t Hash(Args... args) {
-    constexpr size_t size = (sizeof(Args) + ... + 0);
-    unsigned char buf[size];
-    size_t offset = 0;
-    ((std::memcpy(buf + offset, &args, sizeof(Args)), offset += sizeof(Args)), ...);
-    return MurmurHash64A(buf, size, 0);
-}
+// ---- Bit manipulation (pbrt-v4's util/lowdiscrepancy.h); hashing is in util/hash.h ----------
 
 PBRT_CPU_GPU inline uint32_t ReverseBits32(uint32_t n) {
     n = (n << 16) | (n >> 16);

@@ -1,5 +1,5 @@
 // Axis-aligned boxes: pbrt-v4's empty-box convention, set operations, half-open pixel iteration.
-#include <pbrt_ext/util/bounds.h>
+#include "pbrt_ext/util/bounds.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Cameras: pbrt-v4's raster/screen/camera conventions (fov on the shorter axis, raster y down),
 // thin-lens focusing, and the camera sample built from sampler and filter.
-#include <pbrt_ext/cameras.h>
+#include "pbrt_ext/cameras.h"
 
 #include <gtest/gtest.h>
 

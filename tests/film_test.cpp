@@ -1,9 +1,9 @@
 // The RGB film: pbrt-v4's crop rounding, weighted averages, the firefly clamp, lock-free tiles,
 // and output files covering exactly the pixel bounds.
-#include <pbrt_ext/film.h>
+#include "pbrt_ext/film.h"
 
-#include <pbrt_ext/cameras.h>
-#include <pbrt_ext/samplers.h>
+#include "pbrt_ext/cameras.h"
+#include "pbrt_ext/samplers.h"
 
 #include <ImfHeader.h>
 #include <ImfInputFile.h>

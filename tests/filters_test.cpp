@@ -1,6 +1,6 @@
 // Reconstruction filters: pbrt-v4's shapes and closed-form integrals, and filter importance
 // sampling that reproduces the filter's weighted averages (what the film computes).
-#include <pbrt_ext/filters.h>
+#include "pbrt_ext/filters.h"
 
 #include <gtest/gtest.h>
 

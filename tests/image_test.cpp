@@ -1,6 +1,6 @@
 // Images: lossless EXR round trips with metadata, sRGB 8-bit files within quantization, pbrt-v4's
 // wrap modes and lookups, and errors that name the file and leave no partial output.
-#include <pbrt_ext/util/image.h>
+#include "pbrt_ext/util/image.h"
 
 #include <ImfChannelList.h>
 #include <ImfDoubleAttribute.h>

@@ -1,8 +1,8 @@
 // Samplers: values in [0, 1), a pure function of (pixel, sample, dimension, seed), and the
 // distribution property each promises (strata visited once; Sobol' nets in every pixel).
-#include <pbrt_ext/samplers.h>
+#include "pbrt_ext/samplers.h"
 
-#include <pbrt_ext/util/log.h>
+#include "pbrt_ext/util/log.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Transformations: pbrt-v4's conventions (column points, inverse-transpose normals, left-handed
 // rotations in degrees) and the projective matrices the cameras are built from.
-#include <pbrt_ext/util/transform.h>
+#include "pbrt_ext/util/transform.h"
 
 #include <gtest/gtest.h>
 

@@ -10,12 +10,12 @@
 //  - sampleFlags restricts Sample_f and PDF to reflection and/or transmission, identically.
 #pragma once
 
-#include <pbrt_ext/pbrt.h>
-#include <pbrt_ext/util/math.h>
-#include <pbrt_ext/util/pstd.h>
-#include <pbrt_ext/util/sampling.h>
-#include <pbrt_ext/util/spectrum.h>
-#include <pbrt_ext/util/vecmath.h>
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/pstd.h"
+#include "pbrt_ext/util/sampling.h"
+#include "pbrt_ext/util/spectrum.h"
+#include "pbrt_ext/util/vecmath.h"
 
 #include <cstdio>
 #include <string>

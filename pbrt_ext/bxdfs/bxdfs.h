@@ -3,8 +3,12 @@
 #pragma once
 
 #include "pbrt_ext/bxdfs/conductor.h"
+#include "pbrt_ext/bxdfs/dielectric.h"
 #include "pbrt_ext/bxdfs/diffuse.h"
+#include "pbrt_ext/bxdfs/diffusetransmission.h"
 #include "pbrt_ext/bxdfs/fabric.h"
+#include "pbrt_ext/bxdfs/layered.h"
+#include "pbrt_ext/bxdfs/thindielectric.h"
 
 #include <string>
 #include <variant>
@@ -13,7 +17,9 @@ namespace pbrt {
 
 class BxDF {
   public:
-    using Variant = std::variant<DiffuseBxDF, ConductorBxDF, FabricBxDF>;
+    using Variant =
+        std::variant<DiffuseBxDF, ConductorBxDF, DielectricBxDF, ThinDielectricBxDF,
+                     DiffuseTransmissionBxDF, CoatedDiffuseBxDF, CoatedConductorBxDF, FabricBxDF>;
 
     template <typename T>
     BxDF(T bxdf) : bxdf(std::move(bxdf)) {}

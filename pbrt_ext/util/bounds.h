@@ -5,9 +5,9 @@
 // are half-open: [pMin, pMax)).
 #pragma once
 
-#include <pbrt_ext/pbrt.h>
-#include <pbrt_ext/util/math.h>
-#include <pbrt_ext/util/vecmath.h>
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/vecmath.h"
 
 #include <algorithm>
 #include <limits>

@@ -7,9 +7,9 @@
 // of [-1,1]^2, the lower one the four corner triangles, folded over the diamond's edges.
 #pragma once
 
-#include <pbrt_ext/pbrt.h>
-#include <pbrt_ext/util/math.h>
-#include <pbrt_ext/util/vecmath.h>
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/vecmath.h"
 
 #include <cmath>
 #include <utility>

@@ -8,7 +8,7 @@
 // written here from its published description.
 #pragma once
 
-#include <pbrt_ext/pbrt.h>
+#include "pbrt_ext/pbrt.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -12,11 +12,11 @@
 // build.
 #pragma once
 
-#include <pbrt_ext/pbrt.h>
-#include <pbrt_ext/util/bounds.h>
-#include <pbrt_ext/util/math.h>
-#include <pbrt_ext/util/spectrum.h>
-#include <pbrt_ext/util/vecmath.h>
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/bounds.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/spectrum.h"
+#include "pbrt_ext/util/vecmath.h"
 
 #include <map>
 #include <optional>

@@ -1,7 +1,7 @@
 // pbrt_ext: scalar math (pbrt-v4's util/math.h and the float helpers of util/float.h, reduced).
 #pragma once
 
-#include <pbrt_ext/pbrt.h>
+#include "pbrt_ext/pbrt.h"
 
 #include <algorithm>
 #include <bit>

@@ -2,7 +2,7 @@
 // The standard ones are not callable from CUDA device code, and std::optional::value() throws.
 #pragma once
 
-#include <pbrt_ext/pbrt.h>
+#include "pbrt_ext/pbrt.h"
 
 #include <cassert>
 #include <cstddef>

@@ -2,8 +2,9 @@
 // RNG interface (util/rng.h): independent sequences selected by index, and O(log n) skipping.
 #pragma once
 
-#include <pbrt_ext/pbrt.h>
-#include <pbrt_ext/util/math.h>
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/hash.h"
+#include "pbrt_ext/util/math.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -45,16 +46,6 @@ class RNG {
     static constexpr uint64_t DefaultState = 0x853c49e6748fea9bULL;
     static constexpr uint64_t DefaultStream = 0xda3e39cb94b95bdbULL;
     static constexpr uint64_t Multiplier = 0x5851f42d4c957f2dULL;
-
-    // A 64-bit finalizer (xor-shift-multiply rounds) that scatters consecutive inputs.
-    PBRT_CPU_GPU static uint64_t MixBits(uint64_t v) {
-        v ^= (v >> 31);
-        v *= 0x7fb5d329728ea185ULL;
-        v ^= (v >> 27);
-        v *= 0x81dadef4bc2dd44dULL;
-        v ^= (v >> 33);
-        return v;
-    }
 
     uint64_t state, inc;
 };

@@ -3,9 +3,9 @@
 // domain back to the u that produces it, so that round trips can be tested.
 #pragma once
 
-#include <pbrt_ext/pbrt.h>
-#include <pbrt_ext/util/math.h>
-#include <pbrt_ext/util/vecmath.h>
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/vecmath.h"
 
 #include <algorithm>
 #include <cmath>
@@ -139,8 +139,8 @@ PBRT_CPU_GPU inline Float PowerHeuristic(int nf, Float fPdf, int ng, Float gPdf)
 // These parts need <array> and <vector>; the includes sit here so the original header's
 // prologue stays untouched.
 
-#include <pbrt_ext/util/bounds.h>
-#include <pbrt_ext/util/pstd.h>
+#include "pbrt_ext/util/bounds.h"
+#include "pbrt_ext/util/pstd.h"
 
 #include <array>
 #include <vector>

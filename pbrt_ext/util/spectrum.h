@@ -3,9 +3,9 @@
 // pbrt-v4's operator set, so a BxDF written against one compiles unchanged against the other.
 #pragma once
 
-#include <pbrt_ext/pbrt.h>
-#include <pbrt_ext/util/math.h>
-#include <pbrt_ext/util/pstd.h>
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/pstd.h"
 
 #include <algorithm>
 #include <cassert>

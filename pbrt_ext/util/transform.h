@@ -6,12 +6,12 @@
 // no inversion; rotations are in degrees and follow the left-handed coordinate system.
 #pragma once
 
-#include <pbrt_ext/pbrt.h>
-#include <pbrt_ext/ray.h>
-#include <pbrt_ext/util/bounds.h>
-#include <pbrt_ext/util/math.h>
-#include <pbrt_ext/util/pstd.h>
-#include <pbrt_ext/util/vecmath.h>
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/ray.h"
+#include "pbrt_ext/util/bounds.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/pstd.h"
+#include "pbrt_ext/util/vecmath.h"
 
 #include <cmath>
 #include <limits>

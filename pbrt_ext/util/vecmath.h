@@ -3,8 +3,8 @@
 // Point - Point = Vector, Point + Vector = Point; converting between kinds is explicit.
 #pragma once
 
-#include <pbrt_ext/pbrt.h>
-#include <pbrt_ext/util/math.h>
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/math.h"
 
 #include <cmath>
 #include <type_traits>
