@@ -1,5 +1,7 @@
 #include "pbrt_ext/scene.h"
 
+#include "pbrt_ext/util/log.h"
+
 #include <stdexcept>
 
 namespace pbrt {
@@ -25,6 +27,7 @@ int SceneBuilder::AddAreaLights(const AreaLightDescription &emission, int count,
 
 void SceneBuilder::AddTriangleMesh(std::shared_ptr<TriangleMesh> mesh, int material,
                                    std::optional<AreaLightDescription> emission) {
+    emission = EmissionOutsideObjects(emission);
     PrimitiveAttributes attributes{material, -1};
     if (emission)
         attributes.areaLightBase =
@@ -35,6 +38,7 @@ void SceneBuilder::AddTriangleMesh(std::shared_ptr<TriangleMesh> mesh, int mater
 
 void SceneBuilder::AddBilinearPatchMesh(std::shared_ptr<BilinearPatchMesh> mesh, int material,
                                         std::optional<AreaLightDescription> emission) {
+    emission = EmissionOutsideObjects(emission);
     PrimitiveAttributes attributes{material, -1};
     if (emission)
         attributes.areaLightBase =
@@ -45,6 +49,7 @@ void SceneBuilder::AddBilinearPatchMesh(std::shared_ptr<BilinearPatchMesh> mesh,
 
 void SceneBuilder::AddSphere(const Sphere &sphere, int material,
                              std::optional<AreaLightDescription> emission) {
+    emission = EmissionOutsideObjects(emission);
     PrimitiveAttributes attributes{material, -1};
     if (emission)
         attributes.areaLightBase = AddAreaLights(*emission, 1, [&](int) { return Shape(sphere); });
@@ -53,10 +58,46 @@ void SceneBuilder::AddSphere(const Sphere &sphere, int material,
 
 void SceneBuilder::AddDisk(const Disk &disk, int material,
                            std::optional<AreaLightDescription> emission) {
+    emission = EmissionOutsideObjects(emission);
     PrimitiveAttributes attributes{material, -1};
     if (emission)
         attributes.areaLightBase = AddAreaLights(*emission, 1, [&](int) { return Shape(disk); });
     scene->aggregate.AddDisk(disk, attributes);
+}
+
+std::optional<AreaLightDescription> SceneBuilder::EmissionOutsideObjects(
+    std::optional<AreaLightDescription> emission) const {
+    if (emission && !currentObject.empty()) {
+        Warning("object \"%s\": area lights inside objects are not supported; the shape is "
+                "added without emission",
+                currentObject.c_str());
+        return {};
+    }
+    return emission;
+}
+
+void SceneBuilder::BeginObject(const std::string &name) {
+    if (!currentObject.empty())
+        throw std::invalid_argument("object \"" + name + "\" begins inside object \"" +
+                                    currentObject + "\": objects cannot nest");
+    if (objects.count(name))
+        throw std::invalid_argument("object \"" + name + "\" is defined twice");
+    objects[name] = scene->aggregate.BeginObject(name);
+    currentObject = name;
+}
+
+void SceneBuilder::EndObject() {
+    if (currentObject.empty())
+        throw std::invalid_argument("object end without a matching object begin");
+    scene->aggregate.EndObject();
+    currentObject.clear();
+}
+
+void SceneBuilder::AddObjectInstance(const std::string &name, const Transform &worldFromInstance) {
+    auto it = objects.find(name);
+    if (it == objects.end())
+        throw std::invalid_argument("instance of undefined object \"" + name + "\"");
+    scene->aggregate.AddInstance(it->second, worldFromInstance);
 }
 
 void SceneBuilder::AddLight(Light light) { scene->lights.push_back(std::move(light)); }

@@ -15,6 +15,7 @@
 #include "pbrt_ext/samplers.h"
 #include "pbrt_ext/shapes.h"
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -86,6 +87,14 @@ class SceneBuilder {
     void AddDisk(const Disk &disk, int material,
                  std::optional<AreaLightDescription> emission = {});
 
+    // Object instancing (pbrt-v4's ObjectBegin/ObjectEnd/ObjectInstance): shapes added between
+    // BeginObject and EndObject form a named object, placed by each AddObjectInstance. Objects
+    // cannot nest; emission inside an object is dropped with a warning (instances would share
+    // one light). Unknown or repeated names throw std::invalid_argument.
+    void BeginObject(const std::string &name);
+    void EndObject();
+    void AddObjectInstance(const std::string &name, const Transform &worldFromInstance);
+
     // Lights that are not attached to shapes: point, spot, distant, infinite.
     void AddLight(Light light);
 
@@ -100,7 +109,13 @@ class SceneBuilder {
     template <typename ShapeFor>
     int AddAreaLights(const AreaLightDescription &emission, int count, ShapeFor shapeFor);
 
+    // The emission to attach to a shape being added, or none inside an object definition.
+    std::optional<AreaLightDescription> EmissionOutsideObjects(
+        std::optional<AreaLightDescription> emission) const;
+
     std::unique_ptr<Scene> scene;
+    std::map<std::string, int> objects;  // name -> the aggregate's object id
+    std::string currentObject;           // empty outside ObjectBegin/End
     PathIntegratorOptions integratorOptions;
     std::string lightSamplerName = "power";
 };

@@ -111,6 +111,21 @@ TEST(RenderFurnace, FabricSphereReflectsItsDirectionalAlbedoTimesEnvironment) {
     }
 }
 
+TEST(RenderFurnace, LosslessGlassIsInvisibleInAWhiteFurnace) {
+    // Every path through a non-absorbing dielectric eventually leaves it and sees the environment:
+    // Lo = L along every ray, for smooth and thin glass. This checks the 1/eta² radiance scaling
+    // on the way in and out, and Russian roulette on the eta-free throughput. (Rough microfacet
+    // glass is not lossless: single scattering drops the inter-reflection between facets, 34 % of
+    // the light through this sphere at roughness 0.3.)
+    constexpr Float L = 1;
+    for (Material glass : {Material(DielectricMaterial{}), Material(ThinDielectricMaterial{})}) {
+        auto scene = SphereInFurnace(glass, L);
+        for (const Ray &ray : RaysAtUnitSphere())
+            ExpectNear(EstimateLi(*scene, {100, false, PathStrategy::MIS}, ray, 20000), L,
+                       "glass");
+    }
+}
+
 TEST(RenderDirect, EmitterSeenDirectlyIsItsRadiance) {
     SceneBuilder builder(LookingAt(Point3f(0, 0, 3), Point3f(0, 0, 0), 20, Point2i(8, 8)),
                          BoxFilteredFilm(Point2i(8, 8)), IndependentSampler(4));
@@ -228,4 +243,50 @@ TEST(RenderDeterminism, SameImageForOneAndTwoThreads) {
         lit += one->film.GetPixelRGB(p).MaxComponentValue() > 0;
     }
     EXPECT_GT(lit, 32 * 32 / 2);  // the light does light the box
+}
+
+TEST(RenderInstancing, InstancesRenderAsExplicitCopies) {
+    // Two instances of a sphere object against two spheres placed directly: the same image up to
+    // float rounding in the instance transforms.
+    auto render = [](bool instanced) {
+        SceneBuilder builder(LookingAt(Point3f(0, 0, 8), Point3f(0, 0, 0), 40, Point2i(16, 16)),
+                             BoxFilteredFilm(Point2i(16, 16)), IndependentSampler(16));
+        int white = builder.AddMaterial(DiffuseMaterial{SampledSpectrum(0.7f)});
+        const Point3f centers[] = {Point3f(-1.2f, 0, 0), Point3f(1.2f, 0.3f, 0)};
+        if (instanced) {
+            builder.BeginObject("ball");
+            builder.AddSphere(UnitSphereAt(Point3f(0, 0, 0)), white);
+            builder.EndObject();
+            for (Point3f c : centers)
+                builder.AddObjectInstance("ball", Translate(Vector3f(c)));
+        } else {
+            for (Point3f c : centers)
+                builder.AddSphere(UnitSphereAt(c), white);
+        }
+        builder.AddLight(DistantLight(RotateX(30), SampledSpectrum(2), 1));
+        builder.AddLight(UniformInfiniteLight(SampledSpectrum(0.2f), 1));
+        auto scene = builder.Build();
+        Render(*scene, {1, true});
+        return scene;
+    };
+    auto instanced = render(true), copies = render(false);
+    int lit = 0;
+    for (Point2i p : copies->film.PixelBounds()) {
+        Float a = instanced->film.GetPixelRGB(p)[0], b = copies->film.GetPixelRGB(p)[0];
+        EXPECT_NEAR(a, b, 1e-3f * std::max<Float>(1, b)) << p.x << ", " << p.y;
+        lit += b > 0.3f;
+    }
+    EXPECT_GT(lit, 10);  // the spheres are in view and lit
+}
+
+TEST(SceneBuilderErrors, ObjectMisuseIsReportedByName) {
+    SceneBuilder builder(LookingAt(Point3f(0, 0, 8), Point3f(0, 0, 0), 40, Point2i(4, 4)),
+                         BoxFilteredFilm(Point2i(4, 4)), IndependentSampler(1));
+    EXPECT_THROW(builder.AddObjectInstance("nothing", Transform()), std::invalid_argument);
+    EXPECT_THROW(builder.EndObject(), std::invalid_argument);
+    builder.BeginObject("a");
+    EXPECT_THROW(builder.BeginObject("b"), std::invalid_argument);
+    builder.EndObject();
+    EXPECT_THROW(builder.BeginObject("a"), std::invalid_argument);
+    EXPECT_THROW(builder.SetLightSampler("bvh"), std::invalid_argument);
 }
