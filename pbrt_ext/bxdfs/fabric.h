@@ -52,6 +52,55 @@ enum class FabricNormalization {
     UnitPeak  // the largest directional albedo over all wi is 1 (never above), for every n and elevation
 };
 
+// ∫_0^{π/4} (1 - sin x)^n q(x) dx for q a polynomial in cos 2x given by its coefficients in
+// u = 1 - sin x (cos 2x = -1 + 4u - 2u²). With u as variable the integrand is u^(n - 1/2) q(u) / √(2 - u);
+// expanding 1/√(1 - u/2) = Σ γ_k u^k (γ_k = C(2k, k) / 8^k, ratio ≤ 1/2 on the range
+// u ∈ [b, 1], b = 1 - 1/√2) integrates term by term. 40 terms reach 1e-13. bPowHalf = b^(n + 1/2).
+PBRT_CPU_GPU constexpr double FabricFiberIntegral(double n, double bPowHalf, const double *q, int nq) {
+    constexpr int nTerms = 40;
+    constexpr double b = 0.292893218813452475599155637895;
+    double gamma[5] = {1, 0, 0, 0, 0};  // γ_k .. γ_{k-4}, newest first
+    double bPow = bPowHalf, sum = 0;
+    for (int k = 0; k < nTerms; ++k) {
+        if (k > 0) {
+            for (int j = 4; j > 0; --j)
+                gamma[j] = gamma[j - 1];
+            gamma[0] = gamma[1] * (2 * k - 1) / (4 * k);
+        }
+        double d = 0;
+        for (int j = 0; j < nq && j <= k; ++j)
+            d += q[j] * gamma[j];
+        sum += d * (1 - bPow) / (n + 0.5 + k);
+        bPow *= b;
+    }
+    return sum * 0.70710678118654752440;
+}
+
+// The integrands' q: cos 2x (for I_o) and cos² 2x (for I_c), as coefficients in u.
+PBRT_CONST double kFabricCos2x[] = {-1, 4, -2};
+PBRT_CONST double kFabricCos2xSquared[] = {1, -8, 20, -16, 4};
+
+// 1/I_o and 1/I_c for the integer exponents 0 ... 64, computed by the series at compile time: the
+// paper's roughness mapping gives n in 1 ... 30, and a renderer makes a BxDF at every hit.
+struct FabricNormalizationTable {
+    static constexpr int size = 65;
+    Float inverseIo[size], inverseIc[size];
+};
+
+PBRT_CPU_GPU constexpr FabricNormalizationTable MakeFabricNormalizationTable() {
+    constexpr double sqrtB = 0.541196100146196984399723205366, fourPi = 4 * 3.14159265358979323846;
+    FabricNormalizationTable table{};
+    double bPowHalf = sqrtB;  // b^(n + 1/2)
+    for (int n = 0; n < FabricNormalizationTable::size; ++n) {
+        table.inverseIo[n] = Float(1 / (fourPi * FabricFiberIntegral(n, bPowHalf, kFabricCos2x, 3)));
+        table.inverseIc[n] = Float(1 / (8 * FabricFiberIntegral(n, bPowHalf, kFabricCos2xSquared, 5)));
+        bPowHalf *= 0.292893218813452475599155637895;
+    }
+    return table;
+}
+
+PBRT_CONST FabricNormalizationTable kFabricNormalizationTable = MakeFabricNormalizationTable();
+
 // A lobe exponent given directly (continuous, any real n >= 0) instead of through roughness.
 struct FabricExponent {
     Float n;
@@ -91,17 +140,11 @@ class FabricBxDF {
     }
 
     // 1 / I_o(n), I_o(n) = ∫_H² S(θi = 0, wo) dωo = 4π ∫_0^{π/4} (1 - sin x)^n cos 2x dx, any real n >= 0.
-    PBRT_CPU_GPU static Float InverseIo(Float n) {
-        constexpr double cos2x[] = {-1, 4, -2};
-        return Float(1 / (4 * 3.14159265358979323846 * FiberIntegral(n, cos2x, 3)));
-    }
+    PBRT_CPU_GPU static Float InverseIo(Float n);
 
     // 1 / I_c(n), I_c(n) = 8 ∫_0^{π/4} (1 - sin x)^n cos² 2x dx: the cosine-weighted integral of S at
     // θi = 0, where the directional albedo of a tangent thread peaks (docs/fabric.md).
-    PBRT_CPU_GPU static Float InverseIc(Float n) {
-        constexpr double cos2xSquared[] = {1, -8, 20, -16, 4};
-        return Float(1 / (8 * FiberIntegral(n, cos2xSquared, 5)));
-    }
+    PBRT_CPU_GPU static Float InverseIc(Float n);
 
     // The factor that makes the peak directional albedo 1 for exponent n and thread elevation β.
     PBRT_CPU_GPU static Float UnitPeakNormalization(Float n, Float sinBeta, Float cosBeta) {
@@ -152,31 +195,6 @@ class FabricBxDF {
         Float sinThetaO, cosThetaO, sinThetaI, cosThetaI;
         Float sinThetaH, cosThetaH;
     };
-
-    // ∫_0^{π/4} (1 - sin x)^n q(x) dx for q a polynomial in cos 2x given by its coefficients in
-    // u = 1 - sin x (cos 2x = -1 + 4u - 2u²). With u as variable the integrand is
-    // u^(n - 1/2) q(u) / √(2 - u); expanding 1/√(1 - u/2) = Σ γ_k u^k (γ_k = C(2k, k) / 8^k, ratio
-    // ≤ 1/2 on the range u ∈ [1 - 1/√2, 1]) integrates term by term. 40 terms reach 1e-13.
-    PBRT_CPU_GPU static double FiberIntegral(Float nf, const double *q, int nq) {
-        constexpr int nTerms = 40;
-        const double n = nf, b = 1 - 0.70710678118654752440;
-        double gamma[5] = {1, 0, 0, 0, 0};  // γ_k .. γ_{k-4}, newest first
-        double bPow = std::pow(b, n + 0.5), sum = 0;
-        for (int k = 0; k < nTerms; ++k) {
-            if (k > 0) {
-                for (int j = 4; j > 0; --j)
-                    gamma[j] = gamma[j - 1];
-                gamma[0] = gamma[1] * (2 * k - 1) / (4 * k);
-            }
-            double d = 0;
-            for (int j = 0; j < nq && j <= k; ++j)
-                d += q[j] * gamma[j];
-            double e = n + 0.5 + k;
-            sum += d * (1 - bPow) / e;
-            bPow *= b;
-        }
-        return sum * 0.70710678118654752440;
-    }
 
     // Peak directional albedo of S/I_c at elevation β relative to β = 0, by a conservative table: 1 at
     // β = 0, up to 1.9 near β = 60°, toward 0 as β -> 90° (the lobe sinks below the horizon).
@@ -250,6 +268,21 @@ PBRT_CONST Float kUnitPeakG[kUnitPeakNX][kUnitPeakNBeta] = {
     {1.151936, 1.166664, 1.18104, 1.192767, 1.202345, 1.20913, 1.214438, 1.219942, 1.225677, 1.231778, 1.239985, 1.248561, 1.257515, 1.266848, 1.276554, 1.28662, 1.297023, 1.307731, 1.314608, 1.318762},  // x = 1
 };
 
+
+PBRT_CPU_GPU inline Float FabricBxDF::InverseIo(Float n) {
+    if (n == std::floor(n) && n >= 0 && n < FabricNormalizationTable::size)
+        return kFabricNormalizationTable.inverseIo[int(n)];
+    double bPowHalf = std::pow(0.292893218813452475599155637895, double(n) + 0.5);
+    return Float(1 / (4 * 3.14159265358979323846 *
+                      FabricFiberIntegral(n, bPowHalf, kFabricCos2x, 3)));
+}
+
+PBRT_CPU_GPU inline Float FabricBxDF::InverseIc(Float n) {
+    if (n == std::floor(n) && n >= 0 && n < FabricNormalizationTable::size)
+        return kFabricNormalizationTable.inverseIc[int(n)];
+    double bPowHalf = std::pow(0.292893218813452475599155637895, double(n) + 0.5);
+    return Float(1 / (8 * FabricFiberIntegral(n, bPowHalf, kFabricCos2xSquared, 5)));
+}
 
 PBRT_CPU_GPU inline void FabricBxDF::SetFiberFrame(Vector3f thread) {
     Float len = Length(thread);
