@@ -1,25 +1,28 @@
 // Renderer throughput: camera samples per second and rays per second of the path tracer on the
 // Cornell box of tests/scenes.h (256 x 256, 64 spp, maxdepth 5, as the issue specifies), with
-// diffuse boxes and with fabric boxes, for 1 ... all threads.
+// diffuse boxes and with fabric boxes, for 1 ... all threads. With PBRT_EXT_BENCH_IMAGES set to a
+// folder, each benchmark also writes the image it rendered there as PNG.
 #include "scenes.h"
 
 #include "pbrt_ext/render.h"
 
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
+#include <string>
 #include <thread>
 
 using namespace pbrt;
 
 namespace {
 
-void RenderCornellBox(benchmark::State &state, Material boxes) {
+void RenderCornellBox(benchmark::State &state, Material boxes, const char *imageName) {
     const int threads = int(state.range(0));
     RenderStatistics total;
+    std::unique_ptr<Scene> scene;
     for (auto _ : state) {
         state.PauseTiming();
-        auto scene = testscenes::CornellBox(Point2i(256, 256), 64, {5, false, PathStrategy::MIS},
-                                            boxes);
+        scene = testscenes::CornellBox(Point2i(256, 256), 64, {5, false, PathStrategy::MIS}, boxes);
         state.ResumeTiming();
         RenderStatistics stats = Render(*scene, {threads, true});
         total.seconds += stats.seconds;
@@ -31,6 +34,10 @@ void RenderCornellBox(benchmark::State &state, Material boxes) {
     state.counters["rays/s"] = total.RaysPerSecond();
     state.counters["rays/sample"] = double(total.closestRays + total.shadowRays) /
                                     double(total.cameraSamples);
+    if (const char *folder = std::getenv("PBRT_EXT_BENCH_IMAGES")) {
+        scene->film.GetImage().Write(std::string(folder) + "/" + imageName + "_" +
+                                     std::to_string(threads) + "threads.png");
+    }
 }
 
 void ThreadCounts(benchmark::internal::Benchmark *b) {
@@ -40,13 +47,13 @@ void ThreadCounts(benchmark::internal::Benchmark *b) {
 }
 
 void CornellDiffuse(benchmark::State &state) {
-    RenderCornellBox(state, DiffuseMaterial{SampledSpectrum(0.73f)});
+    RenderCornellBox(state, DiffuseMaterial{SampledSpectrum(0.73f)}, "cornell_diffuse");
 }
 void CornellFabric(benchmark::State &state) {
     FabricMaterial fabric;
     fabric.reflectance = SampledSpectrum(0.73f);
     fabric.roughness = 0.3f;
-    RenderCornellBox(state, fabric);
+    RenderCornellBox(state, fabric, "cornell_fabric");
 }
 
 }  // namespace
