@@ -118,7 +118,9 @@ std::unique_ptr<Scene> SceneBuilder::Build() {
         if (light.Type() == LightType::Infinite)
             scene->infiniteLights.push_back(int(i));
     }
-    if (lightSamplerName == "uniform")
+    // With one light there is nothing to select: the uniform sampler returns it with probability 1
+    // without the power sampler's table search.
+    if (lightSamplerName == "uniform" || scene->lights.size() <= 1)
         scene->lightSampler = UniformLightSampler(scene->lights);
     else
         scene->lightSampler = PowerLightSampler(scene->lights);
