@@ -67,37 +67,46 @@ RenderStatistics Render(Scene &scene, const RenderOptions &options) {
     const Bounds2i pixels = scene.film.PixelBounds();
     const std::vector<Bounds2i> tiles = Tiles(pixels);
     const int spp = scene.sampler.SamplesPerPixel();
-    ProgressReporter progress(int64_t(tiles.size()), "Rendering", options.quiet);
+    const bool timed = options.timeLimitSeconds > 0;
+    const int samplesPerPass = timed ? 1 : spp;
+    ProgressReporter progress(int64_t(tiles.size()) * (spp / samplesPerPass), "Rendering",
+                              options.quiet);
     tbb::enumerable_thread_specific<ThreadCounts> counts;
 
-    tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
-        // Embree traverses fastest without denormals (its documentation's advice for every
-        // rendering thread); set per tile since TBB owns the threads.
-        _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-        _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-        Sampler sampler = scene.sampler;  // per tile: samplers carry per-pixel state
-        ThreadCounts &local = counts.local();
-        for (Point2i p : tiles[t])
-            for (int i = 0; i < spp; ++i) {
-                sampler.StartPixelSample(p, i);
-                CameraSample cs = GetCameraSample(sampler, p, scene.film.GetFilter());
-                pstd::optional<CameraRay> cr = scene.camera.GenerateRay(cs);
-                SampledSpectrum L(0.f);
-                if (cr)
-                    L = cr->weight * integrator.Li(cr->ray, sampler, local.rays);
-                if (!IsValidRadiance(L)) {
-                    ++local.discarded;
-                    continue;
+    int done = 0;
+    while (done < spp && !(done > 0 && timed && progress.ElapsedSeconds() >= options.timeLimitSeconds)) {
+        const int first = done, last = done + samplesPerPass;
+        tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
+            // Embree traverses fastest without denormals (its documentation's advice for every
+            // rendering thread); set per tile since TBB owns the threads.
+            _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+            _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+            Sampler sampler = scene.sampler;  // per tile: samplers carry per-pixel state
+            ThreadCounts &local = counts.local();
+            for (Point2i p : tiles[t])
+                for (int i = first; i < last; ++i) {
+                    sampler.StartPixelSample(p, i);
+                    CameraSample cs = GetCameraSample(sampler, p, scene.film.GetFilter());
+                    pstd::optional<CameraRay> cr = scene.camera.GenerateRay(cs);
+                    SampledSpectrum L(0.f);
+                    if (cr)
+                        L = cr->weight * integrator.Li(cr->ray, sampler, local.rays);
+                    if (!IsValidRadiance(L)) {
+                        ++local.discarded;
+                        continue;
+                    }
+                    scene.film.AddSample(p, L, cs.filterWeight);
                 }
-                scene.film.AddSample(p, L, cs.filterWeight);
-            }
-        progress.Update();
-    });
+            progress.Update();
+        });
+        done = last;
+    }
     progress.Done();
 
     RenderStatistics stats;
     stats.seconds = progress.ElapsedSeconds();
-    stats.cameraSamples = int64_t(pixels.Area()) * spp;
+    stats.samplesPerPixel = done;
+    stats.cameraSamples = int64_t(pixels.Area()) * done;
     for (const ThreadCounts &c : counts) {
         stats.closestRays += c.rays.closest;
         stats.shadowRays += c.rays.shadow;

@@ -12,6 +12,9 @@ class Scene;
 struct RenderOptions {
     int nThreads = 0;  // 0: all cores
     bool quiet = false;
+    // Stop starting new samples after this many seconds (0: no limit). The image then holds the
+    // first k samples of every pixel, for the largest k finished in time (at least 1).
+    double timeLimitSeconds = 0;
 };
 
 struct RenderStatistics {
@@ -19,13 +22,16 @@ struct RenderStatistics {
     int64_t cameraSamples = 0;
     int64_t closestRays = 0, shadowRays = 0;
     int64_t discardedSamples = 0;  // radiance NaN or infinite: counted, never written
+    int samplesPerPixel = 0;       // taken by every pixel (fewer than asked under a time limit)
 
     double CameraSamplesPerSecond() const { return cameraSamples / seconds; }
     double RaysPerSecond() const { return (closestRays + shadowRays) / seconds; }
     std::string ToString() const;
 };
 
-// Renders every pixel of the scene's film with all its samples; the film accumulates the result.
+// Renders every pixel of the scene's film; the film accumulates the result. Samples are taken in
+// passes over the image (one pass of all samples without a time limit, one sample index per pass
+// with one), so that stopping between passes leaves every pixel with the same sample count.
 RenderStatistics Render(Scene &scene, const RenderOptions &options);
 
 }  // namespace pbrt

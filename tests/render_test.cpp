@@ -290,3 +290,25 @@ TEST(SceneBuilderErrors, ObjectMisuseIsReportedByName) {
     EXPECT_THROW(builder.BeginObject("a"), std::invalid_argument);
     EXPECT_THROW(builder.SetLightSampler("bvh"), std::invalid_argument);
 }
+
+TEST(RenderTimeLimit, StopsBetweenPassesWithEveryPixelAtTheSameSampleCount) {
+    // Under a time limit the image holds samples 0 ... k-1 of every pixel: the same image as
+    // asking for k samples (the independent sampler's samples do not depend on the count asked).
+    auto scene = [](int spp) {
+        SceneBuilder builder(LookingAt(Point3f(0, 0, 5), Point3f(0, 0, 0), 30, Point2i(32, 32)),
+                             BoxFilteredFilm(Point2i(32, 32)), IndependentSampler(spp, 3));
+        builder.AddSphere(UnitSphereAt(Point3f(0, 0, 0)),
+                          builder.AddMaterial(DiffuseMaterial{SampledSpectrum(0.5f)}));
+        builder.AddLight(UniformInfiniteLight(SampledSpectrum(1.f), 1));
+        return builder.Build();
+    };
+    auto limited = scene(1 << 20);
+    RenderStatistics stats = Render(*limited, {2, true, 0.2});
+    ASSERT_GE(stats.samplesPerPixel, 1);
+    ASSERT_LT(stats.samplesPerPixel, 1 << 20);
+    EXPECT_EQ(stats.cameraSamples, int64_t(32 * 32) * stats.samplesPerPixel);
+    auto exact = scene(stats.samplesPerPixel);
+    Render(*exact, {2, true});
+    for (Point2i p : exact->film.PixelBounds())
+        ASSERT_EQ(limited->film.GetPixelRGB(p), exact->film.GetPixelRGB(p)) << p.x << ", " << p.y;
+}

@@ -1,0 +1,54 @@
+// User-facing errors and warnings about input files, located as "file:line:col" (host only).
+//
+// Every reader of user input (the scene parser, the parameter dictionary, PLY and image
+// loaders) reports bad input by throwing ParseError, whose what() is the complete message
+// "file:line:col: error: ...", so that the command line prints it verbatim and tests can
+// assert the exact text. Problems that do not stop a render (unsupported features) go
+// through WarningAt, which shares util/log.h's quiet switch and warning count.
+#pragma once
+
+#include "pbrt_ext/util/log.h"
+
+#include <cstdarg>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+namespace pbrt {
+
+// A position in an input file; line and column count from 1, as editors show them.
+struct FileLoc {
+    std::string filename;
+    int line = 1, column = 1;
+
+    std::string ToString() const {
+        return filename + ":" + std::to_string(line) + ":" + std::to_string(column);
+    }
+};
+
+class ParseError : public std::runtime_error {
+  public:
+    ParseError(const FileLoc &loc, const std::string &message)
+        : std::runtime_error(loc.ToString() + ": error: " + message), loc(loc) {}
+
+    FileLoc loc;
+};
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+inline void WarningAt(const FileLoc &loc, const char *fmt, ...) {
+    // Formatted here rather than forwarded to Warning(), whose "warning: " prefix would come
+    // before the location; the quiet switch and the count are Warning()'s own.
+    ++Log().warnings;
+    if (Log().quiet)
+        return;
+    std::va_list args;
+    va_start(args, fmt);
+    std::fprintf(stderr, "%s: warning: ", loc.ToString().c_str());
+    std::vfprintf(stderr, fmt, args);
+    std::fputc('\n', stderr);
+    va_end(args);
+}
+
+}  // namespace pbrt
