@@ -1,6 +1,9 @@
 #include "pbrt_ext/materials.h"
 
+#include "pbrt_ext/options.h"
 #include "pbrt_ext/util/scattering.h"
+
+#include <stdexcept>
 
 namespace pbrt {
 
@@ -69,6 +72,20 @@ BxDF FabricMaterial::GetBxDF(const TextureEvalContext &ctx) const {
     return FabricBxDF(Reflectance(reflectance, ctx), roughness.Evaluate(ctx),
                       FabricBxDF::ThreadDirection(threadAngle, threadElevation), sampling,
                       normalization);
+}
+
+FabricSampling ParseFabricSampling(const std::string &name) {
+    constexpr std::pair<const char *, FabricSampling> names[] = {
+        {"uniform", FabricSampling::Uniform},
+        {"cosine", FabricSampling::Cosine},
+        {"paper", FabricSampling::Paper},
+        {"truncatedsinphi", FabricSampling::TruncatedSinPhi},
+        {"best", FabricSampling::Best}};
+    for (auto [n, sampling] : names)
+        if (name == n)
+            return sampling;
+    throw std::invalid_argument("unknown fabric sampler \"" + name +
+                                "\": expected uniform, cosine, paper, truncatedsinphi or best");
 }
 
 }  // namespace pbrt

@@ -1,11 +1,24 @@
-// Textures: what a material's parameters vary with over a surface (pbrt-v4's src/pbrt/textures.h).
-// The closed sets of float and spectrum textures are listed here; the scene-file issue adds image maps
-// and procedural ones. A constant parameter is evaluated without any lookup.
+// Textures: what a material's parameters vary with over a surface (pbrt-v4's src/pbrt/textures.h,
+// reduced). The closed sets of float and spectrum textures are the variants of FloatTexture and
+// SpectrumTexture; a constant parameter is evaluated without any lookup.
+//
+// As in pbrt-v4, a texture that combines others (scale, mix, checkerboard) refers to them by
+// handle: here a shared, immutable FloatTexture or SpectrumTexture, so that a named texture used
+// by many materials exists once and copying a texture is cheap. Textures are host types (image
+// pixels live in a std::vector); their Evaluate() never allocates.
+//
+// Differences from pbrt-v4, and why: there are no ray differentials, so lookups are point
+// sampled (the checkerboard is not box filtered, image maps have no MIP levels and "trilinear"
+// or "ewa" filtering falls back to bilinear); the only 2D mapping is pbrt-v4's "uv" one.
 #pragma once
 
 #include "pbrt_ext/interaction.h"
+#include "pbrt_ext/spectra.h"
+#include "pbrt_ext/util/image.h"
 #include "pbrt_ext/util/spectrum.h"
 
+#include <memory>
+#include <string>
 #include <type_traits>
 #include <variant>
 
@@ -20,6 +33,19 @@ struct TextureEvalContext {
     Point2f uv;
 };
 
+// pbrt-v4's UVMapping: (s, t) = (su u + du, sv v + dv).
+struct UVMapping {
+    Float su = 1, sv = 1, du = 0, dv = 0;
+    Point2f Map(const TextureEvalContext &ctx) const {
+        return Point2f(su * ctx.uv[0] + du, sv * ctx.uv[1] + dv);
+    }
+};
+
+class FloatTexture;
+class SpectrumTexture;
+
+// ---- Constant ---------------------------------------------------------------------------------
+
 struct FloatConstantTexture {
     Float value;
     Float Evaluate(const TextureEvalContext &) const { return value; }
@@ -30,9 +56,100 @@ struct SpectrumConstantTexture {
     SampledSpectrum Evaluate(const TextureEvalContext &) const { return value; }
 };
 
+// ---- Scale, mix, checkerboard (one definition for both value types) -------------------------
+
+namespace detail {
+
+// tex * scale; tex is not evaluated where the scale is 0 (pbrt-v4's ScaledTexture).
+template <typename Tex>
+struct ScaledTexture {
+    ScaledTexture(Tex tex, FloatTexture scale);
+    auto Evaluate(const TextureEvalContext &ctx) const;
+    std::shared_ptr<const Tex> tex;
+    std::shared_ptr<const FloatTexture> scale;
+};
+
+// (1 - amount) tex1 + amount tex2; a texture whose weight is 0 is not evaluated.
+template <typename Tex>
+struct MixTexture {
+    MixTexture(Tex tex1, Tex tex2, FloatTexture amount);
+    auto Evaluate(const TextureEvalContext &ctx) const;
+    std::shared_ptr<const Tex> tex1, tex2;
+    std::shared_ptr<const FloatTexture> amount;
+};
+
+// tex1 on the squares of (s, t) whose integer coordinates have an even sum, tex2 on the others.
+template <typename Tex>
+struct CheckerboardTexture {
+    CheckerboardTexture(UVMapping mapping, Tex tex1, Tex tex2);
+    auto Evaluate(const TextureEvalContext &ctx) const;
+    UVMapping mapping;
+    std::shared_ptr<const Tex> tex1, tex2;
+};
+
+}  // namespace detail
+
+using FloatScaledTexture = detail::ScaledTexture<FloatTexture>;
+using SpectrumScaledTexture = detail::ScaledTexture<SpectrumTexture>;
+using FloatMixTexture = detail::MixTexture<FloatTexture>;
+using SpectrumMixTexture = detail::MixTexture<SpectrumTexture>;
+using FloatCheckerboardTexture = detail::CheckerboardTexture<FloatTexture>;
+using SpectrumCheckerboardTexture = detail::CheckerboardTexture<SpectrumTexture>;
+
+// 0 for the squares where CheckerboardTexture shows tex1, 1 where it shows tex2.
+inline Float Checkerboard(const UVMapping &mapping, const TextureEvalContext &ctx) {
+    Point2f st = mapping.Map(ctx);
+    int parity = (int(std::floor(st[0])) + int(std::floor(st[1]))) & 1;
+    return Float(parity);
+}
+
+// ---- Image maps -------------------------------------------------------------------------------
+
+enum class ImageFilter { Point, Bilinear };
+
+// What pbrt-v4's ImageTextureBase holds. The image is decoded once per (file, encoding) and
+// shared by every texture that reads it (ImageTextureCache).
+struct ImageTextureBase {
+    UVMapping mapping;
+    std::shared_ptr<const Image> image;
+    ImageFilter filter = ImageFilter::Bilinear;
+    WrapMode wrapMode = WrapMode::Repeat;
+    Float scale = 1;
+    bool invert = false;
+
+    // scale times the filtered RGB at the mapped point; t is flipped so that t = 0 is the
+    // bottom row of the file, as in pbrt-v4.
+    SampledSpectrum ScaledLookup(const TextureEvalContext &ctx) const;
+};
+
+// The average of the channels, as pbrt-v4 reads an RGB image as a float texture.
+struct FloatImageTexture : ImageTextureBase {
+    Float Evaluate(const TextureEvalContext &ctx) const;
+};
+
+// A reflectance image is clamped to [0, 1]; other kinds to >= 0 (pbrt-v4's RGB spectra).
+struct SpectrumImageTexture : ImageTextureBase {
+    SpectrumKind kind = SpectrumKind::Reflectance;
+    SampledSpectrum Evaluate(const TextureEvalContext &ctx) const;
+};
+
+// Images decoded for textures, by file name and encoding, for the life of the program (pbrt-v4
+// keeps its texture cache the same way). Thread-safe. Read errors propagate from Image::Read.
+class ImageTextureCache {
+  public:
+    static std::shared_ptr<const Image> Get(const std::string &filename, ColorEncoding encoding);
+    static void Clear();
+};
+
+// pbrt-v4's ParseWrapMode: "repeat", "clamp", "black", "octahedralsphere"; empty otherwise.
+pstd::optional<WrapMode> ParseWrapMode(const std::string &name);
+
+// ---- The closed sets -------------------------------------------------------------------------
+
 class FloatTexture {
   public:
-    using Variant = std::variant<FloatConstantTexture>;
+    using Variant = std::variant<FloatConstantTexture, FloatScaledTexture, FloatMixTexture,
+                                 FloatCheckerboardTexture, FloatImageTexture>;
     FloatTexture(Float value = 0) : texture(FloatConstantTexture{value}) {}
     template <typename T>
         requires std::is_constructible_v<Variant, T>
@@ -48,7 +165,8 @@ class FloatTexture {
 
 class SpectrumTexture {
   public:
-    using Variant = std::variant<SpectrumConstantTexture>;
+    using Variant = std::variant<SpectrumConstantTexture, SpectrumScaledTexture, SpectrumMixTexture,
+                                 SpectrumCheckerboardTexture, SpectrumImageTexture>;
     SpectrumTexture(SampledSpectrum value = SampledSpectrum(0.f))
         : texture(SpectrumConstantTexture{value}) {}
     template <typename T>
@@ -62,5 +180,55 @@ class SpectrumTexture {
   private:
     Variant texture;
 };
+
+// ---- Combining textures, now that the handles are complete ----------------------------------
+
+namespace detail {
+
+template <typename Tex>
+ScaledTexture<Tex>::ScaledTexture(Tex tex, FloatTexture scale)
+    : tex(std::make_shared<const Tex>(std::move(tex))),
+      scale(std::make_shared<const FloatTexture>(std::move(scale))) {}
+
+template <typename Tex>
+auto ScaledTexture<Tex>::Evaluate(const TextureEvalContext &ctx) const {
+    Float sc = scale->Evaluate(ctx);
+    using Value = decltype(tex->Evaluate(ctx));
+    if (sc == 0) return Value(0.f);
+    return tex->Evaluate(ctx) * sc;
+}
+
+template <typename Tex>
+MixTexture<Tex>::MixTexture(Tex tex1, Tex tex2, FloatTexture amount)
+    : tex1(std::make_shared<const Tex>(std::move(tex1))),
+      tex2(std::make_shared<const Tex>(std::move(tex2))),
+      amount(std::make_shared<const FloatTexture>(std::move(amount))) {}
+
+// Shared by mix and checkerboard: (1 - w) a + w b, evaluating only what has weight.
+template <typename Tex>
+auto Blend(Float w, const Tex &a, const Tex &b, const TextureEvalContext &ctx) {
+    using Value = decltype(a.Evaluate(ctx));
+    Value va = (w != 1) ? a.Evaluate(ctx) : Value(0.f);
+    Value vb = (w != 0) ? b.Evaluate(ctx) : Value(0.f);
+    return (1 - w) * va + w * vb;
+}
+
+template <typename Tex>
+auto MixTexture<Tex>::Evaluate(const TextureEvalContext &ctx) const {
+    return Blend(amount->Evaluate(ctx), *tex1, *tex2, ctx);
+}
+
+template <typename Tex>
+CheckerboardTexture<Tex>::CheckerboardTexture(UVMapping mapping, Tex tex1, Tex tex2)
+    : mapping(mapping),
+      tex1(std::make_shared<const Tex>(std::move(tex1))),
+      tex2(std::make_shared<const Tex>(std::move(tex2))) {}
+
+template <typename Tex>
+auto CheckerboardTexture<Tex>::Evaluate(const TextureEvalContext &ctx) const {
+    return Blend(Checkerboard(mapping, ctx), *tex1, *tex2, ctx);
+}
+
+}  // namespace detail
 
 }  // namespace pbrt

@@ -9,6 +9,8 @@
 
 #include "pbrt_ext/util/log.h"
 
+#include <fmt/format.h>
+
 #include <cstdarg>
 #include <cstdio>
 #include <stdexcept>
@@ -16,20 +18,26 @@
 
 namespace pbrt {
 
-// A position in an input file; line and column count from 1, as editors show them.
+// A position in an input file; line and column count from 1, as editors show them. A line or
+// column of 0 means "not meaningful" (a whole-file problem, a binary body) and is left out of
+// ToString(): "file", "file:line" or "file:line:col".
 struct FileLoc {
     std::string filename;
     int line = 1, column = 1;
 
+    // fmt, not string concatenation: GCC 12 warns falsely (-Wrestrict) on the latter at -O3.
     std::string ToString() const {
-        return filename + ":" + std::to_string(line) + ":" + std::to_string(column);
+        if (line <= 0)
+            return filename;
+        return column > 0 ? fmt::format("{}:{}:{}", filename, line, column)
+                          : fmt::format("{}:{}", filename, line);
     }
 };
 
 class ParseError : public std::runtime_error {
   public:
     ParseError(const FileLoc &loc, const std::string &message)
-        : std::runtime_error(loc.ToString() + ": error: " + message), loc(loc) {}
+        : std::runtime_error(fmt::format("{}: error: {}", loc.ToString(), message)), loc(loc) {}
 
     FileLoc loc;
 };

@@ -17,6 +17,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -122,7 +123,27 @@ std::vector<Float> Image::GetSamplingDistribution() const {
     return f;
 }
 
-Image Image::Read(const std::string &path) {
+std::optional<ColorEncoding> ColorEncoding::Get(const std::string &name) {
+    if (name == "linear") return Linear();
+    if (name == "sRGB") return SRGB();
+    // "gamma <g>" with nothing after the number.
+    float g = 0;
+    int consumed = 0;
+    if (std::sscanf(name.c_str(), "gamma %f%n", &g, &consumed) == 1 &&
+        consumed == int(name.size()) && g > 0 && std::isfinite(g))
+        return Gamma(g);
+    return {};
+}
+
+std::string ColorEncoding::ToString() const {
+    switch (kind) {
+    case Kind::SRGB: return "sRGB";
+    case Kind::Gamma: return fmt::format("gamma {}", gamma);
+    default: return "linear";
+    }
+}
+
+Image Image::Read(const std::string &path, ColorEncoding encoding) {
     std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
     if (!in) ThrowFileError(path, "cannot read the image: " + OIIO::geterror());
     const OIIO::ImageSpec &spec = in->spec();
@@ -134,15 +155,15 @@ Image Image::Read(const std::string &path) {
         ThrowFileError(path, "cannot decode the pixels: " + in->geterror());
     in->close();
 
-    // Integer pixels are display-encoded (sRGB); float pixels are radiometric already.
-    bool decodeSRGB = !IsFloatFormat(spec.format);
+    // Integer pixels are display-encoded; float pixels are radiometric already.
+    if (IsFloatFormat(spec.format)) encoding = ColorEncoding::Linear();
     std::array<int, 3> channel = RGBChannelIndices(spec);
     Image image(Point2i(spec.width, spec.height));
     for (int y = 0; y < spec.height; ++y)
         for (int x = 0; x < spec.width; ++x)
             for (int c = 0; c < 3; ++c) {
                 Float v = raw[(size_t(y) * spec.width + x) * spec.nchannels + channel[c]];
-                image.SetChannel(Point2i(x, y), c, decodeSRGB ? SRGBToLinear(v) : v);
+                image.SetChannel(Point2i(x, y), c, encoding.ToLinear(v));
             }
     return image;
 }

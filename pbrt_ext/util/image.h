@@ -1,9 +1,10 @@
 // RGB float images and their files (pbrt-v4's util/image.h, reduced to what the renderer uses:
 // three linear channels in 32-bit float, pbrt-v4's wrap modes and lookups).
 //
-// Values are always linear; sRGB encoding happens only at the 8-bit file boundary. Reading goes
-// through OpenImageIO (integer formats such as PNG, JPEG, TGA are sRGB-decoded, float formats
-// such as EXR, PFM, HDR are taken as linear). Writing EXR goes through OpenEXR (32-bit float RGB
+// Values are always linear; encodings apply only at the integer file boundary. Reading goes
+// through OpenImageIO (integer formats such as PNG, JPEG, TGA are decoded with a ColorEncoding,
+// sRGB unless the caller says otherwise; float formats such as EXR, PFM, HDR are taken as
+// linear). Writing EXR goes through OpenEXR (32-bit float RGB
 // with the metadata as header attributes); any other extension goes through OpenImageIO as 8-bit
 // sRGB. Files are written to a temporary name beside the target and renamed, so a failed write
 // never leaves a partial file. File errors throw std::runtime_error("<path>: error: <what>").
@@ -34,6 +35,36 @@ PBRT_CPU_GPU inline Float LinearToSRGB(Float v) {
     if (v <= 0.0031308f) return 12.92f * v;
     return 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
 }
+
+// How integer pixel values map to linear ones (pbrt-v4's ColorEncoding: "linear", "sRGB",
+// "gamma <g>"), applied to values already scaled to [0, 1].
+class ColorEncoding {
+  public:
+    static ColorEncoding Linear() { return ColorEncoding(Kind::Linear, 1); }
+    static ColorEncoding SRGB() { return ColorEncoding(Kind::SRGB, 1); }
+    static ColorEncoding Gamma(Float gamma) { return ColorEncoding(Kind::Gamma, gamma); }
+    // The encoding a scene file names; empty for an unknown name or a non-positive gamma.
+    static std::optional<ColorEncoding> Get(const std::string &name);
+
+    PBRT_CPU_GPU Float ToLinear(Float v) const {
+        switch (kind) {
+        case Kind::SRGB: return SRGBToLinear(v);
+        case Kind::Gamma: return std::pow(v, gamma);
+        default: return v;
+        }
+    }
+    // The name Get() accepts, e.g. "gamma 2.2"; also a cache key.
+    std::string ToString() const;
+    friend bool operator==(const ColorEncoding &a, const ColorEncoding &b) {
+        return a.kind == b.kind && a.gamma == b.gamma;
+    }
+
+  private:
+    enum class Kind { Linear, SRGB, Gamma };
+    ColorEncoding(Kind kind, Float gamma) : kind(kind), gamma(gamma) {}
+    Kind kind;
+    Float gamma;
+};
 
 // What a lookup outside the image sees (pbrt-v4's WrapMode). OctahedralSphere continues an
 // equal-area octahedral environment map across its edges, which fold onto each other.
@@ -127,7 +158,8 @@ class Image {
     // equal-area parameterization.
     std::vector<Float> GetSamplingDistribution() const;
 
-    static Image Read(const std::string &path);
+    // Integer formats are decoded with encoding; float formats are linear whatever it says.
+    static Image Read(const std::string &path, ColorEncoding encoding = ColorEncoding::SRGB());
     void Write(const std::string &path, const ImageMetadata &metadata = {}) const;
 
   private:

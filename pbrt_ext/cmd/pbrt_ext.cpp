@@ -1,0 +1,108 @@
+// pbrt_ext: renders a pbrt-v4 scene file.
+//
+// Usage: pbrt_ext [options] scene.pbrt. Every option is documented by --help with its default; an
+// unknown option is an error. Bad input (scene, meshes, images, options) is reported as
+// "file:line:col: error: ..." with a non-zero exit, and no image is written.
+#include "pbrt_ext/options.h"
+#include "pbrt_ext/render.h"
+#include "pbrt_ext/sceneloader.h"
+#include "pbrt_ext/util/log.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+using namespace pbrt;
+
+namespace {
+
+struct CommandLine {
+    std::string sceneFile;
+    RenderOverrides overrides;
+};
+
+// Parses argv into the overrides; returns an exit code when the program should stop (help, or an
+// error that CLI11 already printed), or -1 to go on.
+int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
+    CLI::App app("pbrt_ext: a compact pbrt-v4-style path tracer with the DreamWorks fabric BxDF",
+                 "pbrt_ext");
+    RenderOverrides &o = cmd->overrides;
+    int spp = 0;
+    std::string strategy, fabricSampler;
+    std::vector<float> crop;
+    std::vector<int> pixels;
+    app.add_option("scene", cmd->sceneFile, "pbrt-v4 scene file")->required();
+    app.add_option("--spp", spp, "samples per pixel (default: the scene's Sampler)");
+    app.add_option("--nthreads", o.nThreads, "render threads (default: 0, all cores)");
+    app.add_option("--seed", o.seed, "seed of the samplers (default: 0)");
+    app.add_option("--outfile", o.outFile,
+                   "output image, EXR or any OpenImageIO format by extension (default: the "
+                   "scene's Film filename)");
+    app.add_flag("--quiet", o.quiet, "no progress bar and no warnings (default: off)");
+    app.add_flag("--stats", o.stats, "print render statistics at the end (default: off)");
+    app.add_option("--cropwindow", crop, "x0 x1 y0 y1: render only this part of the image, in "
+                                         "[0, 1] (default: the scene's)")
+        ->expected(4);
+    app.add_option("--pixelbounds", pixels, "x0 x1 y0 y1: render only these pixels (default: "
+                                            "the scene's; wins over --cropwindow)")
+        ->expected(4);
+    app.add_option("--strategy", strategy,
+                   "mis, bsdf or light: how paths find light (default: mis)");
+    app.add_option("--fabric-sampler", fabricSampler,
+                   "uniform, cosine, paper, truncatedsinphi or best: the sampler of every fabric "
+                   "material (default: each material's, best unless it says)");
+    app.add_option("--time-limit", o.timeLimitSeconds,
+                   "stop after this many seconds with every pixel at the same sample count "
+                   "(default: 0, no limit)");
+    try {
+        app.parse(argc, argv);
+        if (spp != 0) {
+            if (spp < 0)
+                throw CLI::ValidationError("--spp", "must be positive");
+            o.spp = spp;
+        }
+        if (crop.size() == 4)
+            o.cropWindow = Bounds2f(Point2f(crop[0], crop[2]), Point2f(crop[1], crop[3]));
+        if (pixels.size() == 4)
+            o.pixelBounds = Bounds2i(Point2i(pixels[0], pixels[2]), Point2i(pixels[1], pixels[3]));
+        if (!strategy.empty())
+            o.strategy = ParsePathStrategy(strategy);
+        if (!fabricSampler.empty())
+            o.fabricSampler = ParseFabricSampling(fabricSampler);
+    } catch (const CLI::ParseError &e) {
+        return app.exit(e);
+    } catch (const std::invalid_argument &e) {
+        std::fprintf(stderr, "pbrt_ext: error: %s\n", e.what());
+        return 2;
+    }
+    return -1;
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    CommandLine cmd;
+    if (int exitCode = ParseCommandLine(argc, argv, &cmd); exitCode >= 0)
+        return exitCode;
+    Log().quiet = cmd.overrides.quiet;
+    try {
+        std::unique_ptr<Scene> scene = LoadScene(cmd.sceneFile, cmd.overrides);
+        RenderStatistics stats = Render(*scene, {cmd.overrides.nThreads, cmd.overrides.quiet,
+                                                 cmd.overrides.timeLimitSeconds});
+        ImageMetadata metadata;
+        metadata.samplesPerPixel = stats.samplesPerPixel;
+        metadata.renderTimeSeconds = stats.seconds;
+        metadata.scene = cmd.sceneFile;
+        scene->film.WriteImage(metadata);
+        if (cmd.overrides.stats)
+            std::printf("%s", stats.ToString().c_str());
+        return 0;
+    } catch (const std::exception &e) {
+        // ParseError's text is already "file:line:col: error: ..."; others say what failed.
+        std::fprintf(stderr, "%s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,70 @@
+// Renderer objects from scene-file entities (pbrt-v4's X::Create functions): each reads its
+// entity's parameters with pbrt-v4's names and defaults, warns at the entity's location about
+// what this renderer does not do, and leaves unread parameters to ReportUnused.
+#pragma once
+
+#include "pbrt_ext/options.h"
+#include "pbrt_ext/scene.h"
+#include "pbrt_ext/scenedescription.h"
+#include "pbrt_ext/spectra.h"
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace pbrt {
+
+// Scene options (create_options.cpp).
+Filter CreateFilter(const SceneEntity &filter);
+RGBFilm CreateFilm(const SceneEntity &film, Filter filter, const RenderOverrides &overrides);
+Camera CreateCamera(const CameraSceneEntity &camera, const RGBFilm &film);
+Sampler CreateSampler(const SceneEntity &sampler, Point2i fullResolution,
+                      const RenderOverrides &overrides);
+// The integrator's options, and the light sampler's name ("power" or "uniform").
+PathIntegratorOptions CreateIntegrator(const SceneEntity &integrator,
+                                       const RenderOverrides &overrides,
+                                       std::string *lightSampler);
+
+// A spectrum parameter ("rgb", "blackbody", "spectrum": named, file, samples) as RGB.
+SampledSpectrum GetRGB(const ParameterDictionary &parameters, const std::string &name,
+                       SampledSpectrum defaultValue, SpectrumKind kind, const std::string &folder);
+
+// Material parameters that may be constants or named textures (create_textures.cpp). A named
+// texture is created the first time a material refers to it, and only then: a texture nothing
+// uses is never loaded.
+class TextureResolver {
+  public:
+    TextureResolver(const SceneDescription &scene, std::string folder);
+    ~TextureResolver();
+
+    FloatTexture Float(const ParameterDictionary &parameters, const std::string &name,
+                       pbrt::Float defaultValue);
+    SpectrumTexture Spectrum(const ParameterDictionary &parameters, const std::string &name,
+                             SampledSpectrum defaultValue, SpectrumKind kind);
+    const std::string &Folder() const { return folder; }
+
+  private:
+    struct Cache;
+    const SceneDescription &scene;
+    std::string folder;
+    std::unique_ptr<Cache> cache;
+};
+
+// Materials (create_materials.cpp). The material's type is the entity's name, or for a named
+// material its "string type". std::nullopt for "interface" (no surface: shapes are invisible to
+// shading). Unsupported types warn and become a stated stand-in.
+std::optional<Material> CreateMaterial(const SceneEntity &material, const std::string &type,
+                                       const RenderOverrides &overrides, TextureResolver &textures);
+
+// Lights (create_lights.cpp): point, spot, distant, infinite; std::nullopt (with a warning) for
+// types this renderer lacks.
+std::optional<Light> CreateLight(const TransformedSceneEntity &light, const std::string &folder);
+AreaLightDescription CreateAreaLight(const SceneEntity &areaLight, const std::string &folder);
+
+// Shapes (create_shapes.cpp): adds the shape to the builder, or warns and skips types this
+// renderer lacks.
+void AddShape(SceneBuilder &builder, const ShapeSceneEntity &shape, int material,
+              std::optional<AreaLightDescription> emission, const std::string &folder);
+
+}  // namespace pbrt

@@ -1,0 +1,147 @@
+// Lights from scene-file entities: pbrt-v4's parameters, transforms and photometric scale (a
+// light's spectrum is divided by its luminance, so "scale" is luminance; "power" and
+// "illuminance" fix the emitted power where pbrt-v4 defines them).
+#include "pbrt_ext/create.h"
+
+#include "pbrt_ext/util/error.h"
+
+#include <cmath>
+#include <filesystem>
+
+namespace pbrt {
+
+SampledSpectrum GetRGB(const ParameterDictionary &parameters, const std::string &name,
+                       SampledSpectrum defaultValue, SpectrumKind kind, const std::string &folder) {
+    std::optional<SpectrumParam> s = parameters.GetOneSpectrum(name);
+    return s ? SpectrumToRGB(*s, kind, folder) : defaultValue;
+}
+
+namespace {
+
+// An emission spectrum in RGB with luminance 1 for non-RGB spectra (pbrt-v4 divides the scale by
+// SpectrumToPhotometric; an "rgb" value passes unchanged). Default: white.
+SampledSpectrum Emission(const ParameterDictionary &p, const std::string &name,
+                         const std::string &folder) {
+    std::optional<SpectrumParam> s = p.GetOneSpectrum(name);
+    if (!s)
+        return SampledSpectrum(1.f);
+    return SpectrumToRGB(*s, SpectrumKind::Illuminant, folder) / SpectrumToPhotometric(*s, folder);
+}
+
+// The rotation taking +z to w (columns: a frame around w).
+Transform RotationFromZ(Vector3f w) {
+    Frame f = Frame::FromZ(Normalize(w));
+    return Transform(SquareMatrix<4>(f.x.x, f.y.x, f.z.x, 0, f.x.y, f.y.y, f.z.y, 0, f.x.z,
+                                     f.y.z, f.z.z, 0, 0, 0, 0, 1));
+}
+
+std::string Resolve(const std::string &folder, const std::string &path) {
+    std::filesystem::path p(path);
+    return p.is_absolute() ? path : (std::filesystem::path(folder) / p).string();
+}
+
+Light CreateSpotLight(const TransformedSceneEntity &e, SampledSpectrum I, Float scale) {
+    const ParameterDictionary &p = e.parameters;
+    Float coneAngle = p.GetOneFloat("coneangle", 30), coneDelta = p.GetOneFloat("conedelta", 5);
+    Point3f from = p.GetOnePoint3f("from", Point3f(0, 0, 0)),
+            to = p.GetOnePoint3f("to", Point3f(0, 0, 1));
+    Float power = p.GetOneFloat("power", -1);
+    if (power > 0) {
+        Float cosFalloffEnd = std::cos(Radians(coneAngle)),
+              cosFalloffStart = std::cos(Radians(coneAngle - coneDelta));
+        scale *= power / (2 * Pi * (1 - 0.5f * (cosFalloffStart + cosFalloffEnd)));
+    }
+    Transform worldFromLight = e.worldFromObject * Translate(Vector3f(from)) *
+                               RotationFromZ(to - from);
+    return SpotLight(worldFromLight, I, scale, coneAngle, coneAngle - coneDelta);
+}
+
+Light CreateInfiniteLight(const TransformedSceneEntity &e, Float scale,
+                          const std::string &folder) {
+    const ParameterDictionary &p = e.parameters;
+    std::string filename = p.GetOneString("filename", "");
+    if (p.HasParameter("portal")) {
+        p.GetPoint3fArray("portal");
+        WarningAt(*p.Loc("portal"), "infinite light portals are not supported: ignored (the "
+                                    "image is the same, the noise differs)");
+    }
+    Float illuminance = p.GetOneFloat("illuminance", -1);
+    if (filename.empty()) {
+        SampledSpectrum L = Emission(p, "L", folder);
+        if (illuminance > 0)
+            scale *= illuminance / Pi;  // a uniform sky of radiance 1 gives E = π
+        p.ReportUnused();
+        return UniformInfiniteLight(L, scale);
+    }
+    if (p.HasParameter("L"))
+        throw ParseError(*p.Loc("L"), "an infinite light takes \"L\" or \"filename\", not both");
+    if (illuminance > 0)
+        WarningAt(*p.Loc("illuminance"), "\"illuminance\" of an image infinite light is not "
+                                         "supported: using \"scale\" alone");
+    p.ReportUnused();
+    return ImageInfiniteLight(e.worldFromObject, Image::Read(Resolve(folder, filename)), scale);
+}
+
+}  // namespace
+
+std::optional<Light> CreateLight(const TransformedSceneEntity &e, const std::string &folder) {
+    const ParameterDictionary &p = e.parameters;
+    Float scale = p.GetOneFloat("scale", 1);
+    if (e.name == "point") {
+        SampledSpectrum I = Emission(p, "I", folder);
+        Float power = p.GetOneFloat("power", -1);
+        if (power > 0)
+            scale *= power / (4 * Pi);
+        Point3f from = p.GetOnePoint3f("from", Point3f(0, 0, 0));
+        p.ReportUnused();
+        return PointLight(e.worldFromObject * Translate(Vector3f(from)), I, scale);
+    }
+    if (e.name == "spot") {
+        SampledSpectrum I = Emission(p, "I", folder);
+        Light light = CreateSpotLight(e, I, scale);
+        p.ReportUnused();
+        return light;
+    }
+    if (e.name == "distant") {
+        SampledSpectrum L = Emission(p, "L", folder);
+        Point3f from = p.GetOnePoint3f("from", Point3f(0, 0, 0)),
+                to = p.GetOnePoint3f("to", Point3f(0, 0, 1));
+        Float illuminance = p.GetOneFloat("illuminance", -1);
+        if (illuminance > 0)
+            scale *= illuminance;
+        p.ReportUnused();
+        // The light arrives from worldFromLight(0, 0, 1): toward `from`, seen from `to`.
+        return DistantLight(e.worldFromObject * RotationFromZ(from - to), L, scale);
+    }
+    if (e.name == "infinite")
+        return CreateInfiniteLight(e, scale, folder);
+    if (e.name == "goniometric" || e.name == "projection") {
+        WarningAt(e.loc, "LightSource \"%s\" is not supported: skipped", e.name.c_str());
+        return std::nullopt;
+    }
+    throw ParseError(e.loc, "unknown LightSource \"" + e.name +
+                                "\": expected point, spot, distant or infinite");
+}
+
+AreaLightDescription CreateAreaLight(const SceneEntity &e, const std::string &folder) {
+    const ParameterDictionary &p = e.parameters;
+    if (e.name != "diffuse")
+        throw ParseError(e.loc, "unknown AreaLightSource \"" + e.name + "\": expected diffuse");
+    AreaLightDescription light;
+    light.L = Emission(p, "L", folder);
+    light.scale = p.GetOneFloat("scale", 1);
+    light.twoSided = p.GetOneBool("twosided", false);
+    if (p.HasParameter("power")) {
+        p.GetOneFloat("power", 0);
+        WarningAt(*p.Loc("power"), "\"power\" of area lights is not supported: using \"scale\" "
+                                   "alone");
+    }
+    if (p.HasParameter("filename")) {
+        p.GetOneString("filename", "");
+        WarningAt(*p.Loc("filename"), "image area lights are not supported: emitting \"L\"");
+    }
+    p.ReportUnused();
+    return light;
+}
+
+}  // namespace pbrt

@@ -1,0 +1,207 @@
+// The scene options: camera, film, pixel filter, sampler, integrator (pbrt-v4's names and
+// defaults; unsupported types map to the nearest supported one with a warning).
+#include "pbrt_ext/create.h"
+
+#include "pbrt_ext/util/error.h"
+
+#include <cmath>
+
+namespace pbrt {
+
+namespace {
+
+// An entity whose type this renderer replaces: warn once, at its location.
+void Substitute(const SceneEntity &entity, const char *what, const char *replacement) {
+    WarningAt(entity.loc, "%s \"%s\" is not supported: rendering with %s instead", what,
+              entity.name.c_str(), replacement);
+}
+
+Vector2f Radius(const ParameterDictionary &p, Float def) {
+    return Vector2f(p.GetOneFloat("xradius", def), p.GetOneFloat("yradius", def));
+}
+
+// A parameter that changes the image in pbrt-v4 but has no effect here: warn if it is set to
+// anything but pbrt-v4's neutral value.
+void WarnIfSet(const SceneEntity &e, const char *name, Float neutral) {
+    if (e.parameters.HasParameter(name) && e.parameters.GetOneFloat(name, neutral) != neutral)
+        WarningAt(*e.parameters.Loc(name), "film parameter \"%s\" is not supported: ignored",
+                  name);
+}
+
+Bounds2f ScreenWindow(const ParameterDictionary &p, const RGBFilm &film) {
+    std::vector<Float> sw = p.GetFloatArray("screenwindow");
+    Bounds2f window = DefaultScreenWindow(film.FullResolution());
+    Float frame = p.GetOneFloat("frameaspectratio", 0);
+    if (frame > 0)
+        window = frame > 1 ? Bounds2f(Point2f(-frame, -1), Point2f(frame, 1))
+                           : Bounds2f(Point2f(-1, -1 / frame), Point2f(1, 1 / frame));
+    if (sw.empty())
+        return window;
+    if (sw.size() != 4)
+        throw ParseError(*p.Loc("screenwindow"), "\"screenwindow\" needs four values");
+    return Bounds2f(Point2f(sw[0], sw[2]), Point2f(sw[1], sw[3]));
+}
+
+}  // namespace
+
+Filter CreateFilter(const SceneEntity &e) {
+    const ParameterDictionary &p = e.parameters;
+    Filter filter = GaussianFilter();
+    if (e.name == "box") {
+        filter = BoxFilter(Radius(p, 0.5f));
+    } else if (e.name == "mitchell") {
+        filter = MitchellFilter(Radius(p, 2), p.GetOneFloat("B", 1.f / 3), p.GetOneFloat("C", 1.f / 3));
+    } else if (e.name == "triangle") {
+        filter = TriangleFilter(Radius(p, 2));
+    } else if (e.name == "gaussian" || e.name.empty()) {
+        filter = GaussianFilter(Radius(p, 1.5f), p.GetOneFloat("sigma", 0.5f));
+    } else if (e.name == "sinc" || e.name == "lanczos") {
+        Substitute(e, "PixelFilter", "\"gaussian\"");
+        return filter;  // its parameters belong to the filter we do not have
+    } else {
+        throw ParseError(e.loc, "unknown PixelFilter \"" + e.name +
+                                    "\": expected box, gaussian, mitchell, triangle");
+    }
+    p.ReportUnused();
+    return filter;
+}
+
+RGBFilm CreateFilm(const SceneEntity &e, Filter filter, const RenderOverrides &overrides) {
+    const ParameterDictionary &p = e.parameters;
+    if (e.name == "gbuffer" || e.name == "spectral")
+        Substitute(e, "Film", "\"rgb\" (its color output)");
+    else if (!e.name.empty() && e.name != "rgb")
+        throw ParseError(e.loc, "unknown Film \"" + e.name + "\": expected rgb");
+    Point2i resolution(p.GetOneInt("xresolution", 1280), p.GetOneInt("yresolution", 720));
+    if (resolution.x <= 0 || resolution.y <= 0)
+        throw ParseError(e.loc, "film resolution must be positive");
+    std::string filename = overrides.outFile.empty() ? p.GetOneString("filename", "pbrt.exr")
+                                                     : overrides.outFile;
+    p.GetOneString("filename", "");  // the file's name is superseded, not unused
+    // pbrt-v4's pixelbounds and cropwindow, the command line winning over the file.
+    Bounds2i pixelBounds(Point2i(0, 0), resolution);
+    std::vector<Float> crop = p.GetFloatArray("cropwindow");
+    std::vector<int> pb = p.GetIntArray("pixelbounds");
+    if (overrides.pixelBounds) {
+        pixelBounds = *overrides.pixelBounds;
+    } else if (overrides.cropWindow) {
+        pixelBounds = PixelBoundsFromCropWindow(resolution, *overrides.cropWindow);
+    } else if (pb.size() == 4) {
+        pixelBounds = Bounds2i(Point2i(pb[0], pb[2]), Point2i(pb[1], pb[3]));
+    } else if (crop.size() == 4) {
+        pixelBounds = PixelBoundsFromCropWindow(
+            resolution, Bounds2f(Point2f(crop[0], crop[2]), Point2f(crop[1], crop[3])));
+    }
+    WarnIfSet(e, "iso", 100);
+    WarnIfSet(e, "whitebalance", 0);
+    WarnIfSet(e, "exposuretime", 1);
+    p.GetOneString("sensor", "cie1931");
+    p.GetOneFloat("diagonal", 35);
+    p.GetOneBool("savefp16", true);
+    Float maxComponent = p.GetOneFloat("maxcomponentvalue", Infinity);
+    if (e.name == "rgb" || e.name.empty())
+        p.ReportUnused();
+    return RGBFilm(resolution, pixelBounds, std::move(filter), filename, maxComponent);
+}
+
+Camera CreateCamera(const CameraSceneEntity &e, const RGBFilm &film) {
+    const ParameterDictionary &p = e.parameters;
+    Transform worldFromCamera = Inverse(e.cameraFromWorld);
+    Float lensRadius = p.GetOneFloat("lensradius", 0),
+          focalDistance = p.GetOneFloat("focaldistance", 1e6f);
+    Bounds2f window = ScreenWindow(p, film);
+    if (e.name == "orthographic") {
+        p.ReportUnused();
+        return OrthographicCamera(worldFromCamera, film.FullResolution(), window, lensRadius,
+                                  focalDistance);
+    }
+    if (!e.name.empty() && e.name != "perspective") {
+        if (e.name != "realistic" && e.name != "spherical")
+            throw ParseError(e.loc, "unknown Camera \"" + e.name +
+                                        "\": expected perspective or orthographic");
+        Substitute(e, "Camera", "a perspective camera");
+    }
+    Float fov = p.GetOneFloat("fov", 90);
+    if (e.name == "perspective" || e.name.empty())
+        p.ReportUnused();
+    return PerspectiveCamera(worldFromCamera, film.FullResolution(), window, fov, lensRadius,
+                             focalDistance);
+}
+
+Sampler CreateSampler(const SceneEntity &e, Point2i fullResolution,
+                      const RenderOverrides &overrides) {
+    const ParameterDictionary &p = e.parameters;
+    int seed = p.GetOneInt("seed", overrides.seed);
+    if (e.name == "independent") {
+        int spp = overrides.spp.value_or(p.GetOneInt("pixelsamples", 16));
+        p.ReportUnused();
+        return IndependentSampler(spp, seed);
+    }
+    if (e.name == "stratified") {
+        int xs = p.GetOneInt("xsamples", 4), ys = p.GetOneInt("ysamples", 4);
+        bool jitter = p.GetOneBool("jitter", true);
+        if (overrides.spp) {
+            // pbrt-v4: the most square factorization of the requested count.
+            int n = *overrides.spp, div = int(std::sqrt(double(n)));
+            while (n % div)
+                --div;
+            ys = n / div;
+            xs = n / ys;
+        }
+        p.ReportUnused();
+        return StratifiedSampler(xs, ys, jitter, seed);
+    }
+    if (!e.name.empty() && e.name != "zsobol") {
+        if (e.name != "halton" && e.name != "sobol" && e.name != "paddedsobol" &&
+            e.name != "pmj02bn")
+            throw ParseError(e.loc, "unknown Sampler \"" + e.name + "\": expected zsobol, "
+                                    "halton, sobol, paddedsobol, pmj02bn, stratified or "
+                                    "independent");
+        Substitute(e, "Sampler", "\"zsobol\" (same sample count; a low-discrepancy sampler)");
+    }
+    int spp = overrides.spp.value_or(p.GetOneInt("pixelsamples", 16));
+    std::string randomization = p.GetOneString("randomization", "fastowen");
+    RandomizeStrategy randomize = RandomizeStrategy::FastOwen;
+    if (randomization == "none")
+        randomize = RandomizeStrategy::None;
+    else if (randomization == "permutedigits")
+        randomize = RandomizeStrategy::PermuteDigits;
+    else if (randomization == "owen")
+        randomize = RandomizeStrategy::Owen;
+    else if (randomization != "fastowen")
+        throw ParseError(*p.Loc("randomization"), "unknown randomization \"" + randomization +
+                                                      "\": expected none, permutedigits, "
+                                                      "fastowen or owen");
+    if (e.name == "zsobol" || e.name.empty())
+        p.ReportUnused();
+    return ZSobolSampler(spp, fullResolution, randomize, seed);
+}
+
+PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrides &overrides,
+                                       std::string *lightSampler) {
+    const ParameterDictionary &p = e.parameters;
+    bool supported = e.name.empty() || e.name == "path" || e.name == "volpath";
+    if (!supported)
+        Substitute(e, "Integrator", "\"path\"");
+    PathIntegratorOptions options;
+    options.maxDepth = p.GetOneInt("maxdepth", 5);
+    options.regularize = p.GetOneBool("regularize", false);
+    options.strategy = overrides.strategy.value_or(PathStrategy::MIS);
+    std::string sampler = p.GetOneString("lightsampler", "bvh");
+    if (sampler == "bvh") {
+        // The same image in expectation; only where the noise falls differs.
+        if (p.HasParameter("lightsampler"))
+            WarningAt(*p.Loc("lightsampler"),
+                      "light sampler \"bvh\" is not supported: using \"power\" instead");
+        sampler = "power";
+    } else if (sampler != "power" && sampler != "uniform") {
+        throw ParseError(*p.Loc("lightsampler"), "unknown light sampler \"" + sampler +
+                                                     "\": expected bvh, power or uniform");
+    }
+    *lightSampler = sampler;
+    if (supported)
+        p.ReportUnused();
+    return options;
+}
+
+}  // namespace pbrt

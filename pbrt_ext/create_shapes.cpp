@@ -1,0 +1,190 @@
+// Shapes from scene-file entities (pbrt-v4's Shape::Create): meshes are transformed to world
+// space once; PLY quads become bilinear patches, as pbrt-v4 makes them.
+#include "pbrt_ext/create.h"
+
+#include "pbrt_ext/util/error.h"
+#include "pbrt_ext/util/ply.h"
+
+#include <filesystem>
+
+namespace pbrt {
+
+namespace {
+
+std::string Resolve(const std::string &folder, const std::string &path) {
+    std::filesystem::path p(path);
+    return p.is_absolute() ? path : (std::filesystem::path(folder) / p).string();
+}
+
+// Mesh construction errors (index ranges, sizes) at the shape's location.
+template <typename Make>
+auto AtShape(const ShapeSceneEntity &e, Make make) {
+    try {
+        return make();
+    } catch (const ParseError &) {
+        throw;
+    } catch (const std::exception &error) {
+        throw ParseError(e.loc, error.what());
+    }
+}
+
+void AddTriangleMesh(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
+                     std::optional<AreaLightDescription> emission) {
+    const ParameterDictionary &p = e.parameters;
+    std::vector<int> indices = p.GetIntArray("indices");
+    std::vector<Point3f> P = p.GetPoint3fArray("P");
+    if (indices.empty() && P.size() == 3)
+        indices = {0, 1, 2};  // pbrt-v4: a single triangle needs no indices
+    if (P.empty() || indices.empty())
+        throw ParseError(e.loc, "trianglemesh needs \"point3 P\" and \"integer indices\"");
+    std::vector<Normal3f> N = p.GetNormal3fArray("N");
+    std::vector<Point2f> uv = p.GetPoint2fArray("uv");
+    if (p.HasParameter("S")) {
+        p.GetVector3fArray("S");
+        WarningAt(*p.Loc("S"), "per-vertex tangents \"S\" are not supported: ignored");
+    }
+    p.GetIntArray("faceIndices");
+    p.ReportUnused();
+    auto mesh = AtShape(e, [&] {
+        return std::make_shared<TriangleMesh>(MakeTriangleMesh(
+            e.worldFromObject, e.reverseOrientation, std::move(indices), std::move(P),
+            std::move(N), std::move(uv)));
+    });
+    builder.AddTriangleMesh(std::move(mesh), material, emission);
+}
+
+void AddPlyMesh(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
+                std::optional<AreaLightDescription> emission, const std::string &folder) {
+    const ParameterDictionary &p = e.parameters;
+    std::string filename = p.GetOneString("filename", "");
+    if (filename.empty())
+        throw ParseError(e.loc, "plymesh needs \"string filename\"");
+    if (p.HasParameter("displacement")) {
+        p.GetTexture("displacement");
+        p.GetOneFloat("edgelength", 1);
+        WarningAt(*p.Loc("displacement"), "plymesh displacement is not supported: ignored");
+    }
+    p.ReportUnused();
+    std::string path = Resolve(folder, filename);
+    if (!std::filesystem::is_regular_file(path))
+        throw ParseError(*p.Loc("filename"), "cannot open PLY file \"" + filename +
+                                                 "\" (looked for " + path + ")");
+    PlyMesh ply = ReadPly(path);
+    if (!ply.triIndices.empty()) {
+        auto mesh = AtShape(e, [&] {
+            return std::make_shared<TriangleMesh>(MakeTriangleMesh(
+                e.worldFromObject, e.reverseOrientation, ply.triIndices, ply.p, ply.n, ply.uv));
+        });
+        builder.AddTriangleMesh(std::move(mesh), material, emission);
+    }
+    if (!ply.quadIndices.empty()) {
+        // A PLY quad v0 v1 v2 v3 runs around its boundary; a bilinear patch lists p00 p10 p01 p11.
+        std::vector<int> patches;
+        for (size_t i = 0; i + 3 < ply.quadIndices.size(); i += 4)
+            for (int k : {0, 1, 3, 2})
+                patches.push_back(ply.quadIndices[i + k]);
+        auto mesh = AtShape(e, [&] {
+            return std::make_shared<BilinearPatchMesh>(MakeBilinearPatchMesh(
+                e.worldFromObject, e.reverseOrientation, std::move(patches), ply.p, ply.n, ply.uv));
+        });
+        builder.AddBilinearPatchMesh(std::move(mesh), material, emission);
+    }
+}
+
+void AddBilinearMesh(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
+                     std::optional<AreaLightDescription> emission) {
+    const ParameterDictionary &p = e.parameters;
+    std::vector<int> indices = p.GetIntArray("indices");
+    std::vector<Point3f> P = p.GetPoint3fArray("P");
+    if (indices.empty() && P.size() == 4)
+        indices = {0, 1, 2, 3};
+    if (P.empty() || indices.empty())
+        throw ParseError(e.loc, "bilinearmesh needs \"point3 P\" and \"integer indices\"");
+    std::vector<Normal3f> N = p.GetNormal3fArray("N");
+    std::vector<Point2f> uv = p.GetPoint2fArray("uv");
+    p.ReportUnused();
+    auto mesh = AtShape(e, [&] {
+        return std::make_shared<BilinearPatchMesh>(
+            MakeBilinearPatchMesh(e.worldFromObject, e.reverseOrientation, std::move(indices),
+                                  std::move(P), std::move(N), std::move(uv)));
+    });
+    builder.AddBilinearPatchMesh(std::move(mesh), material, emission);
+}
+
+// pbrt-v4's cylinder (radius, zmin, zmax, phimax) as a fine triangle mesh with the cylinder's
+// exact normals and (u, v) = (φ/φmax, (z - zmin)/(zmax - zmin)).
+void AddCylinder(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
+                 std::optional<AreaLightDescription> emission) {
+    constexpr int kSegments = 256;
+    const ParameterDictionary &p = e.parameters;
+    Float radius = p.GetOneFloat("radius", 1), zMin = p.GetOneFloat("zmin", -1),
+          zMax = p.GetOneFloat("zmax", 1), phiMax = Radians(Clamp(p.GetOneFloat("phimax", 360), 0, 360));
+    p.ReportUnused();
+    WarningAt(e.loc, "cylinder is rendered as a %d-segment triangle mesh with exact normals",
+              kSegments);
+    std::vector<Point3f> P;
+    std::vector<Normal3f> N;
+    std::vector<Point2f> uv;
+    std::vector<int> indices;
+    for (int i = 0; i <= kSegments; ++i) {
+        Float u = Float(i) / kSegments, phi = u * phiMax;
+        for (Float z : {zMin, zMax}) {
+            P.push_back(Point3f(radius * std::cos(phi), radius * std::sin(phi), z));
+            N.push_back(Normal3f(std::cos(phi), std::sin(phi), 0));
+            uv.push_back(Point2f(u, z == zMin ? 0 : 1));
+        }
+        if (i > 0)
+            for (int k : {0, 2, 1, 1, 2, 3})
+                indices.push_back(2 * (i - 1) + k);
+    }
+    auto mesh = std::make_shared<TriangleMesh>(MakeTriangleMesh(
+        e.worldFromObject, e.reverseOrientation, std::move(indices), std::move(P), std::move(N),
+        std::move(uv)));
+    builder.AddTriangleMesh(std::move(mesh), material, emission);
+}
+
+}  // namespace
+
+void AddShape(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
+              std::optional<AreaLightDescription> emission, const std::string &folder) {
+    const ParameterDictionary &p = e.parameters;
+    if (p.HasParameter("alpha")) {
+        // Read either form so that it is not reported unused; cut-outs are not rendered.
+        if (p.ParameterType("alpha") == "texture")
+            p.GetTexture("alpha");
+        else
+            p.GetOneFloat("alpha", 1);
+        WarningAt(*p.Loc("alpha"), "alpha cut-outs are not supported: the shape is opaque");
+    }
+    if (e.name == "trianglemesh")
+        return AddTriangleMesh(builder, e, material, emission);
+    if (e.name == "plymesh")
+        return AddPlyMesh(builder, e, material, emission, folder);
+    if (e.name == "bilinearmesh")
+        return AddBilinearMesh(builder, e, material, emission);
+    if (e.name == "cylinder")
+        return AddCylinder(builder, e, material, emission);
+    if (e.name == "sphere") {
+        Float radius = p.GetOneFloat("radius", 1);
+        Sphere sphere(e.worldFromObject, e.reverseOrientation, radius,
+                      p.GetOneFloat("zmin", -radius), p.GetOneFloat("zmax", radius),
+                      p.GetOneFloat("phimax", 360));
+        p.ReportUnused();
+        return builder.AddSphere(sphere, material, emission);
+    }
+    if (e.name == "disk") {
+        Disk disk(e.worldFromObject, e.reverseOrientation, p.GetOneFloat("height", 0),
+                  p.GetOneFloat("radius", 1), p.GetOneFloat("innerradius", 0),
+                  p.GetOneFloat("phimax", 360));
+        p.ReportUnused();
+        return builder.AddDisk(disk, material, emission);
+    }
+    if (e.name == "curve" || e.name == "loopsubdiv") {
+        WarningAt(e.loc, "Shape \"%s\" is not supported: skipped", e.name.c_str());
+        return;
+    }
+    throw ParseError(e.loc, "unknown Shape \"" + e.name + "\": expected trianglemesh, plymesh, "
+                                "bilinearmesh, sphere, disk or cylinder");
+}
+
+}  // namespace pbrt

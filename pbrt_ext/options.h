@@ -1,0 +1,30 @@
+// What the command line overrides in a scene (pbrt-v4's PBRTOptions, reduced to this renderer).
+#pragma once
+
+#include "pbrt_ext/bxdfs/fabric.h"
+#include "pbrt_ext/integrators.h"
+#include "pbrt_ext/util/bounds.h"
+
+#include <optional>
+#include <string>
+
+namespace pbrt {
+
+struct RenderOverrides {
+    std::optional<int> spp;                  // samples per pixel instead of the sampler's
+    int nThreads = 0;                        // 0: all cores
+    int seed = 0;                            // the samplers' seed (pbrt-v4's --seed)
+    std::string outFile;                     // instead of the film's filename
+    bool quiet = false;                      // no progress bar, no warnings
+    bool stats = false;                      // print the render statistics
+    std::optional<Bounds2f> cropWindow;      // instead of the film's
+    std::optional<Bounds2i> pixelBounds;     // instead of the film's (wins over cropWindow)
+    std::optional<PathStrategy> strategy;    // instead of the integrator's "mis"
+    std::optional<FabricSampling> fabricSampler;  // for every fabric material
+    double timeLimitSeconds = 0;             // 0: none
+};
+
+// "uniform", "cosine", "paper", "truncatedsinphi" or "best"; throws std::invalid_argument otherwise.
+FabricSampling ParseFabricSampling(const std::string &name);
+
+}  // namespace pbrt

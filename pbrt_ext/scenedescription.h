@@ -1,0 +1,209 @@
+// The scene as the file describes it: pbrt-v4's BasicSceneBuilder (the ParserTarget that tracks
+// the graphics state) and the entities of its BasicScene, reduced to what this renderer has: no
+// animated transforms, no media, render space = world space.
+//
+// Everything here is plain data: names, unevaluated ParameterDictionary objects and the FileLoc
+// of the directive that made each entity, so that the conversion to a SceneBuilder (which
+// creates only what is referenced) can report errors where the user wrote them. Nothing is
+// loaded, nothing is checked against what a shape or material accepts; that is the converter's.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pbrt_ext/paramdict.h"
+#include "pbrt_ext/parser.h"
+#include "pbrt_ext/util/error.h"
+#include "pbrt_ext/util/transform.h"
+
+namespace pbrt {
+
+// A directive's type name ("perspective", "trianglemesh", "diffuse", ...), its parameters and
+// where it was written.
+struct SceneEntity {
+    SceneEntity() = default;
+    SceneEntity(std::string name, ParameterDictionary parameters, FileLoc loc)
+        : name(std::move(name)), parameters(std::move(parameters)), loc(std::move(loc)) {}
+
+    std::string name;
+    ParameterDictionary parameters;
+    FileLoc loc;
+};
+
+// Lights and textures: placed by the CTM in force at their directive.
+struct TransformedSceneEntity : SceneEntity {
+    TransformedSceneEntity() = default;
+    TransformedSceneEntity(SceneEntity entity, const Transform &worldFromObject)
+        : SceneEntity(std::move(entity)), worldFromObject(worldFromObject) {}
+
+    Transform worldFromObject;
+};
+
+struct CameraSceneEntity : SceneEntity {
+    Transform cameraFromWorld;
+};
+
+struct ShapeSceneEntity : SceneEntity {
+    Transform worldFromObject;
+    bool reverseOrientation = false;
+    // The material in force: an index into SceneDescription::materials, or -1 and the name of a
+    // named material (pbrt-v4's pair; whichever of Material and NamedMaterial came last wins).
+    int materialIndex = 0;
+    std::string materialName;
+    // The AreaLightSource in force, if any (name "diffuse" and its parameters).
+    std::optional<SceneEntity> areaLight;
+    // The ObjectBegin this shape was defined in; empty for shapes placed in the world directly.
+    std::string insideObject;
+};
+
+// An ObjectBegin/ObjectEnd block: the shapes it defines, as indices into SceneDescription::shapes.
+struct InstanceDefinitionSceneEntity {
+    std::string name;
+    FileLoc loc;
+    std::vector<int> shapeIndices;
+};
+
+struct InstanceSceneEntity {
+    std::string name;  // the object placed
+    FileLoc loc;
+    Transform worldFromInstance;
+};
+
+// An `Option "type name" value` directive; the value is validated for the option's type and kept
+// as text without quotes ("true", "12", "ref.exr").
+struct SceneOption {
+    std::string name, value;
+    FileLoc loc;
+};
+
+struct SceneDescription {
+    // Options (before WorldBegin); pbrt-v4's defaults when the file does not name one.
+    CameraSceneEntity camera;
+    SceneEntity film, sampler, integrator, filter, accelerator;
+    std::map<std::string, SceneOption> options;  // by pbrt-v4's normalized option name
+
+    // The world. Shapes inside object definitions are listed too (insideObject set); only
+    // instances place them.
+    std::vector<ShapeSceneEntity> shapes;
+    std::vector<TransformedSceneEntity> lights;
+    // Anonymous materials in the order of their Material directives; materials[0] is pbrt-v4's
+    // default "diffuse", the material of shapes before any Material directive.
+    std::vector<SceneEntity> materials;
+    // MakeNamedMaterial: entity name empty, the type in its "string type" parameter (pbrt-v4).
+    std::map<std::string, SceneEntity> namedMaterials;
+    // Texture "name" "float"|"spectrum" "class": keyed by name, entity name = the class.
+    std::map<std::string, TransformedSceneEntity> floatTextures, spectrumTextures;
+    std::map<std::string, InstanceDefinitionSceneEntity> instanceDefinitions;
+    std::vector<InstanceSceneEntity> instances;
+
+    // Where the file first asked for participating media (ignored here, with one warning).
+    std::optional<FileLoc> ignoredMediaLoc;
+};
+
+// Turns parser callbacks into a SceneDescription. Violations of the file's structure throw
+// ParseError at the offending directive; unsupported features warn once (WarningAt) and are
+// skipped. EndOfFiles() checks what only the whole file can tell: a WorldBegin, closed blocks,
+// defined named materials and objects.
+class BasicSceneBuilder : public ParserTarget {
+  public:
+    // inputName (the main scene file) locates the errors that no directive has, such as a
+    // missing WorldBegin.
+    explicit BasicSceneBuilder(SceneDescription *scene, std::string inputName = "<input>");
+
+    void Option(const std::string &name, const std::string &value, FileLoc loc) override;
+    void Identity(FileLoc loc) override;
+    void Translate(Float dx, Float dy, Float dz, FileLoc loc) override;
+    void Scale(Float sx, Float sy, Float sz, FileLoc loc) override;
+    void Rotate(Float angle, Float ax, Float ay, Float az, FileLoc loc) override;
+    void LookAt(Float ex, Float ey, Float ez, Float lx, Float ly, Float lz, Float ux, Float uy,
+                Float uz, FileLoc loc) override;
+    void ConcatTransform(Float transform[16], FileLoc loc) override;
+    void Transform(Float transform[16], FileLoc loc) override;
+    void CoordinateSystem(const std::string &name, FileLoc loc) override;
+    void CoordSysTransform(const std::string &name, FileLoc loc) override;
+    void ActiveTransformAll(FileLoc loc) override;
+    void ActiveTransformEndTime(FileLoc loc) override;
+    void ActiveTransformStartTime(FileLoc loc) override;
+    void TransformTimes(Float start, Float end, FileLoc loc) override;
+    void ColorSpace(const std::string &name, FileLoc loc) override;
+    void PixelFilter(const std::string &name, ParsedParameterVector params, FileLoc loc) override;
+    void Film(const std::string &type, ParsedParameterVector params, FileLoc loc) override;
+    void Sampler(const std::string &name, ParsedParameterVector params, FileLoc loc) override;
+    void Accelerator(const std::string &name, ParsedParameterVector params, FileLoc loc) override;
+    void Integrator(const std::string &name, ParsedParameterVector params, FileLoc loc) override;
+    void Camera(const std::string &name, ParsedParameterVector params, FileLoc loc) override;
+    void MakeNamedMedium(const std::string &name, ParsedParameterVector params,
+                         FileLoc loc) override;
+    void MediumInterface(const std::string &insideName, const std::string &outsideName,
+                         FileLoc loc) override;
+    void WorldBegin(FileLoc loc) override;
+    void AttributeBegin(FileLoc loc) override;
+    void AttributeEnd(FileLoc loc) override;
+    void Attribute(const std::string &target, ParsedParameterVector params, FileLoc loc) override;
+    void Texture(const std::string &name, const std::string &type, const std::string &texname,
+                 ParsedParameterVector params, FileLoc loc) override;
+    void Material(const std::string &name, ParsedParameterVector params, FileLoc loc) override;
+    void MakeNamedMaterial(const std::string &name, ParsedParameterVector params,
+                           FileLoc loc) override;
+    void NamedMaterial(const std::string &name, FileLoc loc) override;
+    void LightSource(const std::string &name, ParsedParameterVector params, FileLoc loc) override;
+    void AreaLightSource(const std::string &name, ParsedParameterVector params,
+                         FileLoc loc) override;
+    void Shape(const std::string &name, ParsedParameterVector params, FileLoc loc) override;
+    void ReverseOrientation(FileLoc loc) override;
+    void ObjectBegin(const std::string &name, FileLoc loc) override;
+    void ObjectEnd(FileLoc loc) override;
+    void ObjectInstance(const std::string &name, FileLoc loc) override;
+    void EndOfFiles() override;
+
+  private:
+    // What AttributeBegin saves and AttributeEnd restores.
+    struct GraphicsState {
+        class Transform ctm;
+        // Without motion blur only the shutter-open transform exists; transforms given for the
+        // end time alone are dropped (with a warning at the ActiveTransform directive).
+        bool startTransformActive = true;
+        bool reverseOrientation = false;
+        int currentMaterialIndex = 0;
+        std::string currentMaterialName;
+        std::optional<SceneEntity> areaLight;
+        // Attribute "shape"|"light"|"material"|"texture": defaults for later directives.
+        ParsedParameterVector shapeAttributes, lightAttributes, materialAttributes,
+            textureAttributes;
+    };
+    enum class BlockState { OptionsBlock, WorldBlock };
+    // An open AttributeBegin ('a') or ObjectBegin ('o') and where it was opened.
+    struct OpenBlock {
+        char kind;
+        FileLoc loc;
+    };
+
+    void VerifyOptions(const char *directive, const FileLoc &loc);
+    void VerifyWorld(const char *directive, const FileLoc &loc);
+    void SetCTM(const class Transform &ctm);
+    void SetActiveTransform(bool start, const FileLoc &loc);
+    void PopBlock(char kind, const FileLoc &loc);
+    void IgnoreMedia(const FileLoc &loc);
+    bool FirstTime(const std::string &topic);
+    void CheckReferences() const;
+
+    SceneDescription *scene;
+    BlockState currentBlock = BlockState::OptionsBlock;
+    GraphicsState graphicsState;
+    std::vector<GraphicsState> pushedGraphicsStates;
+    std::vector<OpenBlock> pushStack;
+    std::map<std::string, class Transform> namedCoordinateSystems;
+    std::string activeObject;  // the ObjectBegin being defined, empty outside one
+    std::string inputName;
+    std::set<std::string> warned;
+};
+
+// The description of a scene file or text: ParseFile/ParseString into a BasicSceneBuilder.
+SceneDescription DescribeSceneFile(const std::string &filename);
+SceneDescription DescribeSceneString(std::string text, std::string name = "<string>");
+
+}  // namespace pbrt

@@ -1,0 +1,126 @@
+#include "pbrt_ext/sceneloader.h"
+
+#include "pbrt_ext/create.h"
+#include "pbrt_ext/scenedescription.h"
+#include "pbrt_ext/util/error.h"
+
+#include <filesystem>
+#include <map>
+#include <set>
+
+namespace pbrt {
+
+namespace {
+
+// Materials are created when a shape first uses them, so that an unreferenced material (and
+// the textures it names) is never loaded. Indices are the builder's; -1 is "interface".
+class MaterialResolver {
+  public:
+    MaterialResolver(const SceneDescription &scene, SceneBuilder &builder,
+                     const RenderOverrides &overrides, TextureResolver &textures)
+        : scene(scene), builder(builder), overrides(overrides), textures(textures) {}
+
+    int For(const ShapeSceneEntity &shape) {
+        if (!shape.materialName.empty())
+            return Named(shape.materialName, shape.loc);
+        auto [it, inserted] = anonymous.try_emplace(shape.materialIndex, -1);
+        if (inserted) {
+            const SceneEntity &m = scene.materials[shape.materialIndex];
+            it->second = Add(CreateMaterial(m, m.name, overrides, textures));
+        }
+        return it->second;
+    }
+
+  private:
+    int Named(const std::string &name, const FileLoc &use) {
+        auto [it, inserted] = named.try_emplace(name, -1);
+        if (inserted) {
+            auto found = scene.namedMaterials.find(name);
+            if (found == scene.namedMaterials.end())
+                throw ParseError(use, "named material \"" + name + "\" is not defined");
+            const SceneEntity &m = found->second;
+            std::string type = m.parameters.GetOneString("type", "");
+            if (type.empty())
+                throw ParseError(m.loc, "named material \"" + name + "\" needs a \"string type\"");
+            it->second = Add(CreateMaterial(m, type, overrides, textures));
+        }
+        return it->second;
+    }
+
+    int Add(std::optional<Material> material) {
+        return material ? builder.AddMaterial(std::move(*material)) : -1;
+    }
+
+    const SceneDescription &scene;
+    SceneBuilder &builder;
+    const RenderOverrides &overrides;
+    TextureResolver &textures;
+    std::map<int, int> anonymous;
+    std::map<std::string, int> named;
+};
+
+void WarnAboutOptions(const SceneDescription &scene) {
+    for (const auto &[name, option] : scene.options)
+        WarningAt(option.loc, "Option \"%s\" is not supported: ignored", name.c_str());
+}
+
+void AddShapes(const SceneDescription &scene, const std::vector<int> &indices,
+               SceneBuilder &builder, MaterialResolver &materials, const std::string &folder) {
+    for (int i : indices) {
+        const ShapeSceneEntity &shape = scene.shapes[i];
+        std::optional<AreaLightDescription> emission;
+        if (shape.areaLight)
+            emission = CreateAreaLight(*shape.areaLight, folder);
+        AddShape(builder, shape, materials.For(shape), emission, folder);
+    }
+}
+
+// Objects that some instance places, each defined once in the aggregate, then the instances.
+void AddInstances(const SceneDescription &scene, SceneBuilder &builder,
+                  MaterialResolver &materials, const std::string &folder) {
+    std::set<std::string> used;
+    for (const InstanceSceneEntity &instance : scene.instances)
+        used.insert(instance.name);
+    for (const std::string &name : used) {
+        const InstanceDefinitionSceneEntity &object = scene.instanceDefinitions.at(name);
+        builder.BeginObject(name);
+        AddShapes(scene, object.shapeIndices, builder, materials, folder);
+        builder.EndObject();
+    }
+    for (const InstanceSceneEntity &instance : scene.instances)
+        builder.AddObjectInstance(instance.name, instance.worldFromInstance);
+}
+
+}  // namespace
+
+std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverrides &overrides) {
+    SceneDescription scene = DescribeSceneFile(filename);
+    // Relative paths (meshes, images, spectra) are relative to the main file's folder.
+    const std::string folder = std::filesystem::absolute(filename).parent_path().string();
+    WarnAboutOptions(scene);
+
+    RGBFilm film = CreateFilm(scene.film, CreateFilter(scene.filter), overrides);
+    Camera camera = CreateCamera(scene.camera, film);
+    Sampler sampler = CreateSampler(scene.sampler, film.FullResolution(), overrides);
+    std::string lightSampler;
+    PathIntegratorOptions integrator = CreateIntegrator(scene.integrator, overrides, &lightSampler);
+
+    SceneBuilder builder(std::move(camera), std::move(film), std::move(sampler));
+    builder.SetIntegrator(integrator);
+    builder.SetLightSampler(lightSampler);
+    TextureResolver textures(scene, folder);
+    MaterialResolver materials(scene, builder, overrides, textures);
+
+    std::vector<int> worldShapes;
+    for (size_t i = 0; i < scene.shapes.size(); ++i)
+        if (scene.shapes[i].insideObject.empty())
+            worldShapes.push_back(int(i));
+    AddShapes(scene, worldShapes, builder, materials, folder);
+    AddInstances(scene, builder, materials, folder);
+    for (const TransformedSceneEntity &light : scene.lights)
+        if (std::optional<Light> l = CreateLight(light, folder))
+            builder.AddLight(std::move(*l));
+    return builder.Build();
+}
+
+}  // namespace pbrt

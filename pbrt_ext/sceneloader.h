@@ -1,0 +1,18 @@
+// From a pbrt-v4 scene file to a render-ready Scene: parse it into a SceneDescription, then create
+// through SceneBuilder only what the scene references (pbrt-v4's BasicScene::Create*). Every
+// parameter of every entity is read with pbrt-v4's name and default; one that nothing reads is an
+// error at its location, and a feature this renderer lacks is a warning with its location.
+#pragma once
+
+#include "pbrt_ext/options.h"
+#include "pbrt_ext/scene.h"
+
+#include <memory>
+#include <string>
+
+namespace pbrt {
+
+// Throws ParseError ("file:line:col: error: ...") for bad input, std::runtime_error for I/O.
+std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverrides &overrides);
+
+}  // namespace pbrt
