@@ -1,0 +1,164 @@
+// Scene files to scenes: every scene we ship renders, only what is referenced is created, and bad
+// input is reported where it was written.
+#include "pbrt_ext/render.h"
+#include "pbrt_ext/sceneloader.h"
+#include "pbrt_ext/util/error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+using namespace pbrt;
+
+namespace {
+
+const std::filesystem::path kScenes = std::filesystem::path(PBRT_EXT_TEST_DATA_DIR) / "../../scenes";
+
+// A scene file in a fresh temporary folder (paths inside are relative to it).
+std::string WriteScene(const std::string &name, const std::string &text) {
+    std::filesystem::path dir = std::filesystem::temp_directory_path() / "pbrt_ext_loader_test";
+    std::filesystem::create_directories(dir);
+    std::filesystem::path file = dir / name;
+    std::ofstream(file) << text;
+    return file.string();
+}
+
+const char *kHeader = R"(LookAt 0 0 5  0 0 0  0 1 0
+Camera "perspective" "float fov" 30
+Film "rgb" "integer xresolution" 16 "integer yresolution" 16 "string filename" "out.exr"
+Sampler "independent" "integer pixelsamples" 4
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+)";
+
+std::string LoadError(const std::string &file) {
+    try {
+        LoadScene(file, RenderOverrides{});
+    } catch (const ParseError &e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+RenderOverrides Quick() {
+    RenderOverrides o;
+    o.spp = 1;
+    o.quiet = true;
+    return o;
+}
+
+}  // namespace
+
+class ShippedScene : public testing::TestWithParam<const char *> {};
+
+TEST_P(ShippedScene, RendersWithoutNaN) {
+    Log().quiet = true;
+    std::unique_ptr<Scene> scene = LoadScene((kScenes / GetParam()).string(), Quick());
+    RenderStatistics stats = Render(*scene, {0, true});
+    EXPECT_EQ(stats.discardedSamples, 0);
+    double sum = 0;
+    for (Point2i p : scene->film.PixelBounds()) {
+        SampledSpectrum rgb = scene->film.GetPixelRGB(p);
+        for (int c = 0; c < 3; ++c) {
+            ASSERT_TRUE(std::isfinite(rgb[c])) << p.x << ", " << p.y;
+            sum += rgb[c];
+        }
+    }
+    EXPECT_GT(sum, 0);  // the scene is lit and visible
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
+                         testing::Values("cornell-box.pbrt", "fabric-furnace.pbrt",
+                                         "fabric-cylinder.pbrt", "fabric-showcase.pbrt"));
+
+TEST(SceneLoader, UnreferencedTexturesAndMaterialsAreNeverLoaded) {
+    // The texture and the named material point at files that do not exist; nothing uses them.
+    std::string file = WriteScene("unreferenced.pbrt", std::string(kHeader) + R"(
+Texture "unused" "spectrum" "imagemap" "string filename" "no-such-image.png"
+MakeNamedMaterial "unusedmat" "string type" "diffuse" "texture reflectance" "unused"
+Material "diffuse"
+Shape "sphere"
+)");
+    std::unique_ptr<Scene> scene = LoadScene(file, Quick());
+    EXPECT_EQ(scene->materials.size(), 1u);
+    Render(*scene, {1, true});
+}
+
+TEST(SceneLoader, ReferencedMissingTextureIsAnErrorAtItsUse) {
+    std::string file = WriteScene("missing.pbrt", std::string(kHeader) + R"(
+Material "diffuse" "texture reflectance" "nothing"
+Shape "sphere"
+)");
+    EXPECT_EQ(LoadError(file), file + ":8:20: error: spectrum texture \"nothing\" is not defined");
+}
+
+TEST(SceneLoader, FabricParametersReachTheMaterial) {
+    std::string file = WriteScene("fabric.pbrt", std::string(kHeader) + R"(
+Material "fabric" "rgb reflectance" [0.9 0.2 0.1] "float roughness" 0.3 "float threadangle" 90
+    "float threadelevation" 20 "string sampler" "paper" "string normalization" "unitpeak"
+Shape "sphere"
+)");
+    std::unique_ptr<Scene> scene = LoadScene(file, Quick());
+    pstd::optional<ShapeIntersection> hit = scene->Intersect(Ray(Point3f(0, 0, 5), Vector3f(0, 0, -1)));
+    ASSERT_TRUE(hit);
+    std::string bsdf = scene->materials[0].GetBSDF(hit->intr).ToString();
+    EXPECT_NE(bsdf.find("FabricBxDF"), std::string::npos) << bsdf;
+    EXPECT_NE(bsdf.find("n: 16"), std::string::npos) << bsdf;  // ceil(1 + 29 * 0.49)
+    EXPECT_NE(bsdf.find("normalization: unitpeak"), std::string::npos) << bsdf;
+    EXPECT_NE(bsdf.find("sampling: paper"), std::string::npos) << bsdf;
+}
+
+TEST(SceneLoader, CommandLineFabricSamplerOverridesTheFile) {
+    std::string file = WriteScene("fabric2.pbrt", std::string(kHeader) + R"(
+Material "fabric" "string sampler" "paper"
+Shape "sphere"
+)");
+    RenderOverrides o = Quick();
+    o.fabricSampler = FabricSampling::Uniform;
+    std::unique_ptr<Scene> scene = LoadScene(file, o);
+    pstd::optional<ShapeIntersection> hit = scene->Intersect(Ray(Point3f(0, 0, 5), Vector3f(0, 0, -1)));
+    ASSERT_TRUE(hit);
+    EXPECT_NE(scene->materials[0].GetBSDF(hit->intr).ToString().find("sampling: uniform"),
+              std::string::npos);
+}
+
+TEST(SceneLoaderErrors, BadFabricParametersAreReportedWhereWritten) {
+    std::string file = WriteScene("badfabric.pbrt", std::string(kHeader) + R"(
+Material "fabric" "string normalization" "energy"
+Shape "sphere"
+)");
+    EXPECT_EQ(LoadError(file), file + ":8:19: error: unknown fabric normalization \"energy\": "
+                                      "expected paper or unitpeak");
+    std::string file2 = WriteScene("badsampler.pbrt", std::string(kHeader) + R"(
+Material "fabric" "string sampler" "magic"
+Shape "sphere"
+)");
+    EXPECT_EQ(LoadError(file2), file2 + ":8:19: error: unknown fabric sampler \"magic\": expected "
+                                        "uniform, cosine, paper, truncatedsinphi or best");
+}
+
+TEST(SceneLoaderErrors, UnusedAndUnknownAreErrors) {
+    std::string file = WriteScene("unused.pbrt", std::string(kHeader) + R"(
+Material "diffuse" "float roughnes" 0.2
+Shape "sphere"
+)");
+    EXPECT_EQ(LoadError(file), file + ":8:20: error: unused parameter \"float roughnes\"");
+    std::string file2 = WriteScene("unknown.pbrt", std::string(kHeader) + R"(
+Shape "teapot"
+)");
+    EXPECT_EQ(LoadError(file2), file2 + ":8:1: error: unknown Shape \"teapot\": expected "
+                                        "trianglemesh, plymesh, bilinearmesh, sphere, disk or "
+                                        "cylinder");
+}
+
+TEST(SceneLoaderErrors, MissingPlyIsReportedAtItsFilename) {
+    std::string file = WriteScene("noply.pbrt", std::string(kHeader) + R"(
+Shape "plymesh" "string filename" "absent.ply"
+)");
+    std::string error = LoadError(file);
+    EXPECT_EQ(error.rfind(file + ":8:17: error: cannot open PLY file \"absent.ply\"", 0), 0u)
+        << error;
+}
