@@ -53,7 +53,8 @@ class TextureResolver {
 
 // Materials (create_materials.cpp). The material's type is the entity's name, or for a named
 // material its "string type". std::nullopt for "interface" (no surface: shapes are invisible to
-// shading). Unsupported types warn and become a stated stand-in.
+// shading). Unsupported types warn and become a stated stand-in. "mix" refers to other materials
+// and is made by the scene loader's material resolver, not here.
 std::optional<Material> CreateMaterial(const SceneEntity &material, const std::string &type,
                                        const RenderOverrides &overrides, TextureResolver &textures);
 

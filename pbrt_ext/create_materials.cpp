@@ -163,9 +163,6 @@ std::optional<Material> CreateMaterial(const SceneEntity &e, const std::string &
     } else if (type == "interface") {
         p.ReportUnused();
         return std::nullopt;
-    } else if (type == "mix") {
-        WarningAt(e.loc, "Material \"mix\" is not supported yet: rendered as diffuse 0.5");
-        return DiffuseMaterial{};
     } else if (type == "measured" || type == "hair" || type == "subsurface") {
         WarningAt(e.loc, "Material \"%s\" is not supported: rendered as diffuse 0.5",
                   type.c_str());

@@ -76,7 +76,8 @@ SampledSpectrum PathIntegrator::Li(Ray ray, Sampler &sampler, RayCounts &rays) c
                 L += beta * Le * BSDFHitWeight(lightSampled, pdfBSDF, pdfLight);
             }
         }
-        if (si.materialIndex < 0) {
+        std::optional<BSDF> maybeBSDF = scene.GetBSDF(si);
+        if (!maybeBSDF) {
             // An interface between media, which we do not model: continue straight through.
             ray = si.SpawnRay(ray.d);
             --depth;
@@ -84,7 +85,7 @@ SampledSpectrum PathIntegrator::Li(Ray ray, Sampler &sampler, RayCounts &rays) c
         }
         if (depth == options.maxDepth)
             break;
-        BSDF bsdf = scene.materials[si.materialIndex].GetBSDF(si);
+        BSDF &bsdf = *maybeBSDF;
         if (options.regularize && anyNonSpecularBounces)
             bsdf.Regularize();
 

@@ -1,6 +1,7 @@
 #include "pbrt_ext/materials.h"
 
 #include "pbrt_ext/options.h"
+#include "pbrt_ext/util/hash.h"
 #include "pbrt_ext/util/scattering.h"
 
 #include <stdexcept>
@@ -72,6 +73,16 @@ BxDF FabricMaterial::GetBxDF(const TextureEvalContext &ctx) const {
     return FabricBxDF(Reflectance(reflectance, ctx), roughness.Evaluate(ctx),
                       FabricBxDF::ThreadDirection(threadAngle, threadElevation), sampling,
                       normalization);
+}
+
+int MixMaterial::Choose(const SurfaceInteraction &si) const {
+    Float amt = amount.Evaluate(TextureEvalContext(si));
+    if (amt <= 0)
+        return materials[0];
+    if (amt >= 1)
+        return materials[1];
+    Float u = Float(uint32_t(Hash(si.p, si.wo, materials[0], materials[1]))) * 0x1p-32f;
+    return amt < u ? materials[0] : materials[1];
 }
 
 FabricSampling ParseFabricSampling(const std::string &name) {

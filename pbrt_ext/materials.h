@@ -91,12 +91,24 @@ struct FabricMaterial {
     BxDF GetBxDF(const TextureEvalContext &ctx) const;
 };
 
+// pbrt-v4's stochastic mix of two materials: at each hit one of them is chosen, the second with
+// probability `amount`, by a hash of the hit, so that the choice is the same for a given point and
+// direction. The scene resolves a mix to the chosen material before asking for a BSDF.
+struct MixMaterial {
+    int materials[2];  // indices into the scene's materials (-1: an interface)
+    FloatTexture amount = 0.5f;
+
+    int Choose(const SurfaceInteraction &si) const;
+    // Never reached: Scene::GetBSDF resolves mixes first (kept for the closed dispatch).
+    BxDF GetBxDF(const TextureEvalContext &) const { return DiffuseBxDF(SampledSpectrum(0.f)); }
+};
+
 class Material {
   public:
     using Variant =
         std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, ThinDielectricMaterial,
                      DiffuseTransmissionMaterial, CoatedDiffuseMaterial, CoatedConductorMaterial,
-                     FabricMaterial>;
+                     FabricMaterial, MixMaterial>;
     template <typename T>
     Material(T material) : material(std::move(material)) {}
 
@@ -106,6 +118,8 @@ class Material {
         BxDF bxdf = std::visit([&](const auto &m) { return m.GetBxDF(ctx); }, material);
         return BSDF(si.shading.n, si.shading.dpdu, std::move(bxdf));
     }
+
+    const MixMaterial *AsMix() const { return std::get_if<MixMaterial>(&material); }
 
   private:
     Variant material;

@@ -51,6 +51,16 @@ class Scene {
     bool IntersectP(const Ray &ray, Float tMax = Infinity) const {
         return aggregate.IntersectP(ray, tMax);
     }
+    // The BSDF at a hit, mixes resolved; none for an interface (a surface that only bounds media).
+    std::optional<BSDF> GetBSDF(const SurfaceInteraction &si) const {
+        int index = si.materialIndex;
+        while (index >= 0)
+            if (const MixMaterial *mix = materials[index].AsMix())
+                index = mix->Choose(si);
+            else
+                return materials[index].GetBSDF(si);
+        return std::nullopt;
+    }
 
     EmbreeAggregate aggregate;
     std::vector<Material> materials;

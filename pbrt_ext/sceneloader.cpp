@@ -26,7 +26,7 @@ class MaterialResolver {
         auto [it, inserted] = anonymous.try_emplace(shape.materialIndex, -1);
         if (inserted) {
             const SceneEntity &m = scene.materials[shape.materialIndex];
-            it->second = Add(CreateMaterial(m, m.name, overrides, textures));
+            it->second = Create(m, m.name);
         }
         return it->second;
     }
@@ -42,13 +42,26 @@ class MaterialResolver {
             std::string type = m.parameters.GetOneString("type", "");
             if (type.empty())
                 throw ParseError(m.loc, "named material \"" + name + "\" needs a \"string type\"");
-            it->second = Add(CreateMaterial(m, type, overrides, textures));
+            it->second = Create(m, type);
         }
         return it->second;
     }
 
-    int Add(std::optional<Material> material) {
-        return material ? builder.AddMaterial(std::move(*material)) : -1;
+    // A mix names two materials, which only this resolver can turn into indices.
+    int Create(const SceneEntity &m, const std::string &type) {
+        if (type != "mix") {
+            std::optional<Material> material = CreateMaterial(m, type, overrides, textures);
+            return material ? builder.AddMaterial(std::move(*material)) : -1;
+        }
+        const ParameterDictionary &p = m.parameters;
+        std::vector<std::string> names = p.GetStringArray("materials");
+        if (names.size() != 2)
+            throw ParseError(p.Loc("materials") ? *p.Loc("materials") : m.loc,
+                             "mix needs \"string materials\" with two named materials");
+        MixMaterial mix{{Named(names[0], *p.Loc("materials")), Named(names[1], *p.Loc("materials"))},
+                        textures.Float(p, "amount", 0.5f)};
+        p.ReportUnused();
+        return builder.AddMaterial(std::move(mix));
     }
 
     const SceneDescription &scene;

@@ -162,3 +162,32 @@ Shape "plymesh" "string filename" "absent.ply"
     EXPECT_EQ(error.rfind(file + ":8:17: error: cannot open PLY file \"absent.ply\"", 0), 0u)
         << error;
 }
+
+TEST(SceneLoader, MixChoosesTheSecondMaterialWithProbabilityAmount) {
+    // In a white furnace a diffuse sphere reflects its albedo; with a mix of red (a) and blue (b)
+    // at amount 0.25, the red share of the sphere's pixels is 0.75. About 1e4 hashed choices:
+    // a standard error of 0.0043; the threshold is 0.02 (4.6 of them).
+    std::string file = WriteScene("mix.pbrt", R"(LookAt 0 0 5  0 0 0  0 1 0
+Camera "perspective" "float fov" 20
+Film "rgb" "integer xresolution" 32 "integer yresolution" 32 "string filename" "out.exr"
+Sampler "independent" "integer pixelsamples" 16
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+MakeNamedMaterial "a" "string type" "diffuse" "rgb reflectance" [0.8 0 0]
+MakeNamedMaterial "b" "string type" "diffuse" "rgb reflectance" [0 0 0.8]
+Material "mix" "string materials" ["a" "b"] "float amount" 0.25
+Shape "sphere"
+)");
+    std::unique_ptr<Scene> scene = LoadScene(file, RenderOverrides{});
+    Render(*scene, {0, true});
+    double red = 0, blue = 0;
+    for (Point2i p : scene->film.PixelBounds()) {
+        SampledSpectrum rgb = scene->film.GetPixelRGB(p);
+        if (rgb[1] < 0.01f) {  // entirely on the sphere (the background is white)
+            red += rgb[0];
+            blue += rgb[2];
+        }
+    }
+    ASSERT_GT(red + blue, 0);
+    EXPECT_NEAR(red / (red + blue), 0.75, 0.02);
+}
