@@ -78,14 +78,10 @@ void AddPlyMesh(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
         builder.AddTriangleMesh(std::move(mesh), material, emission);
     }
     if (!ply.quadIndices.empty()) {
-        // A PLY quad v0 v1 v2 v3 runs around its boundary; a bilinear patch lists p00 p10 p01 p11.
-        std::vector<int> patches;
-        for (size_t i = 0; i + 3 < ply.quadIndices.size(); i += 4)
-            for (int k : {0, 1, 3, 2})
-                patches.push_back(ply.quadIndices[i + k]);
+        // ReadPly already lists each quad as a bilinear patch's p00 p10 p01 p11.
         auto mesh = AtShape(e, [&] {
             return std::make_shared<BilinearPatchMesh>(MakeBilinearPatchMesh(
-                e.worldFromObject, e.reverseOrientation, std::move(patches), ply.p, ply.n, ply.uv));
+                e.worldFromObject, e.reverseOrientation, ply.quadIndices, ply.p, ply.n, ply.uv));
         });
         builder.AddBilinearPatchMesh(std::move(mesh), material, emission);
     }

@@ -191,3 +191,22 @@ Shape "sphere"
     ASSERT_GT(red + blue, 0);
     EXPECT_NEAR(red / (red + blue), 0.75, 0.02);
 }
+
+TEST(SceneLoader, PlyQuadsBecomePatchesCoveringTheirSquare) {
+    // A quad written around its boundary must cover exactly its square (a patch with two
+    // corners swapped would be a twisted hourglass that misses points near the edges' middles).
+    std::string ply = WriteScene("quad.ply", "ply\nformat ascii 1.0\nelement vertex 4\n"
+                                             "property float x\nproperty float y\nproperty float z\n"
+                                             "element face 1\nproperty list uchar int vertex_indices\n"
+                                             "end_header\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n4 0 1 2 3\n");
+    std::string file = WriteScene("quad.pbrt", std::string(kHeader) +
+                                                    "Shape \"plymesh\" \"string filename\" \"quad.ply\"\n");
+    std::unique_ptr<Scene> scene = LoadScene(file, Quick());
+    auto hits = [&](Float x, Float y) {
+        return bool(scene->Intersect(Ray(Point3f(x, y, 1), Vector3f(0, 0, -1))));
+    };
+    for (auto [x, y] : {std::pair{0.9f, 0.1f}, {-0.9f, -0.1f}, {0.1f, 0.9f}, {-0.1f, -0.9f}, {0.f, 0.f}})
+        EXPECT_TRUE(hits(x, y)) << x << ", " << y;
+    for (auto [x, y] : {std::pair{1.1f, 0.f}, {0.f, -1.1f}})
+        EXPECT_FALSE(hits(x, y)) << x << ", " << y;
+}
