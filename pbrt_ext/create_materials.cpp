@@ -3,6 +3,8 @@
 
 #include "pbrt_ext/util/error.h"
 
+#include <filesystem>
+
 namespace pbrt {
 
 namespace {
@@ -82,12 +84,31 @@ FabricMaterial CreateFabric(const ParameterDictionary &p, TextureResolver &textu
     }
     if (overrides.fabricSampler)
         m.sampling = *overrides.fabricSampler;
+    if (p.HasParameter("diffuse"))
+        m.diffuse = textures.Spectrum(p, "diffuse", SampledSpectrum(0.f), SpectrumKind::Reflectance);
     if (normalization == "unitpeak")
         m.normalization = FabricNormalization::UnitPeak;
     else if (normalization != "paper")
         throw ParseError(*p.Loc("normalization"), "unknown fabric normalization \"" +
                                                       normalization + "\": expected paper or unitpeak");
     return m;
+}
+
+// pbrt-v4's "texture displacement" (bump map; a float texture or value) and "string normalmap"
+// (an image read with linear encoding, relative to the scene's folder).
+void SetShadingPerturbation(const ParameterDictionary &p, TextureResolver &textures, Material *m) {
+    if (p.HasParameter("displacement"))
+        m->SetDisplacement(textures.Float(p, "displacement", 0));
+    std::string normalMap = p.GetOneString("normalmap", "");
+    if (normalMap.empty())
+        return;
+    if (p.HasParameter("displacement"))
+        throw ParseError(*p.Loc("normalmap"), "a material takes \"displacement\" or \"normalmap\", "
+                                              "not both");
+    std::filesystem::path path(normalMap);
+    if (!path.is_absolute())
+        path = std::filesystem::path(textures.Folder()) / path;
+    m->SetNormalMap(ImageTextureCache::Get(path.string(), ColorEncoding::Linear()));
 }
 
 }  // namespace
@@ -97,14 +118,6 @@ std::optional<Material> CreateMaterial(const SceneEntity &e, const std::string &
                                        TextureResolver &textures) {
     const ParameterDictionary &p = e.parameters;
     std::optional<Material> material;
-    if (p.HasParameter("displacement") || p.HasParameter("normalmap")) {
-        const char *which = p.HasParameter("displacement") ? "displacement" : "normalmap";
-        if (p.HasParameter("displacement"))
-            p.GetTexture("displacement");
-        if (p.HasParameter("normalmap"))
-            p.GetOneString("normalmap", "");
-        WarningAt(*p.Loc(which), "bump and normal mapping are not supported yet: ignored");
-    }
     if (type == "diffuse" || type.empty()) {
         material = DiffuseMaterial{textures.Spectrum(p, "reflectance", SampledSpectrum(0.5f),
                                                      SpectrumKind::Reflectance)};
@@ -170,6 +183,7 @@ std::optional<Material> CreateMaterial(const SceneEntity &e, const std::string &
     } else {
         throw ParseError(e.loc, "unknown Material \"" + type + "\"");
     }
+    SetShadingPerturbation(p, textures, &*material);
     p.ReportUnused();
     return material;
 }

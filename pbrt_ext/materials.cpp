@@ -70,9 +70,70 @@ BxDF CoatedConductorMaterial::GetBxDF(const TextureEvalContext &ctx) const {
 }
 
 BxDF FabricMaterial::GetBxDF(const TextureEvalContext &ctx) const {
-    return FabricBxDF(Reflectance(reflectance, ctx), roughness.Evaluate(ctx),
+    FabricBxDF fabric(Reflectance(reflectance, ctx), roughness.Evaluate(ctx),
                       FabricBxDF::ThreadDirection(threadAngle, threadElevation), sampling,
                       normalization);
+    if (!diffuse)
+        return fabric;
+    return FabricDiffuseBxDF(fabric, Reflectance(*diffuse, ctx));
+}
+
+namespace {
+
+struct ShadingFrame {
+    Normal3f n;
+    Vector3f dpdu;
+};
+
+// pbrt-v4's BumpMap: the surface displaced along the shading normal by d(u, v), differentiated by
+// forward differences. Without ray differentials the step is pbrt-v4's fallback of 0.0005 in (u,
+// v); without dn/du the terms d * dn/du are dropped (exact for flat and polygonal surfaces).
+ShadingFrame BumpMap(const FloatTexture &displacement, const SurfaceInteraction &si) {
+    constexpr Float du = 0.0005f, dv = 0.0005f;
+    TextureEvalContext ctx(si);
+    Float d = displacement.Evaluate(ctx);
+    TextureEvalContext shifted = ctx;
+    shifted.p = si.p + du * si.shading.dpdu;
+    shifted.uv = Point2f(si.uv[0] + du, si.uv[1]);
+    Float dU = displacement.Evaluate(shifted);
+    shifted.p = si.p + dv * si.shading.dpdv;
+    shifted.uv = Point2f(si.uv[0], si.uv[1] + dv);
+    Float dV = displacement.Evaluate(shifted);
+    Vector3f n(si.shading.n);
+    Vector3f dpdu = si.shading.dpdu + (dU - d) / du * n;
+    Vector3f dpdv = si.shading.dpdv + (dV - d) / dv * n;
+    Normal3f ns(Normalize(Cross(dpdu, dpdv)));
+    if (!IsFinite(ns.x) || LengthSquared(Vector3f(ns)) == 0)
+        return {si.shading.n, si.shading.dpdu};
+    // Keep the side of the unperturbed shading normal (pbrt-v4 flips the same way).
+    return {Dot(ns, si.shading.n) < 0 ? -ns : ns, dpdu};
+}
+
+// pbrt-v4's NormalMap: the map's RGB in [0, 1] is a tangent-space normal 2 rgb - 1 in the frame
+// (dpdu, n); t is flipped so that the file's top row is v = 1.
+ShadingFrame NormalMap(const Image &image, const SurfaceInteraction &si) {
+    Point2f st(si.uv[0], 1 - si.uv[1]);
+    SampledSpectrum rgb = image.Bilerp(st, WrapMode::Repeat);
+    Vector3f local = Normalize(Vector3f(2 * rgb[0] - 1, 2 * rgb[1] - 1, 2 * rgb[2] - 1));
+    Vector3f x = si.shading.dpdu - Dot(si.shading.dpdu, Vector3f(si.shading.n)) * Vector3f(si.shading.n);
+    if (LengthSquared(x) == 0 || !IsFinite(local.x))
+        return {si.shading.n, si.shading.dpdu};
+    Frame frame = Frame::FromXZ(Normalize(x), Vector3f(si.shading.n));
+    Normal3f ns(frame.FromLocal(local));
+    return {ns, GramSchmidt(si.shading.dpdu, Vector3f(ns)) * Length(si.shading.dpdu)};
+}
+
+}  // namespace
+
+BSDF Material::GetBSDF(const SurfaceInteraction &si) const {
+    TextureEvalContext ctx(si);
+    BxDF bxdf = std::visit([&](const auto &m) { return m.GetBxDF(ctx); }, material);
+    ShadingFrame frame{si.shading.n, si.shading.dpdu};
+    if (displacement)
+        frame = BumpMap(*displacement, si);
+    else if (normalMap)
+        frame = NormalMap(*normalMap, si);
+    return BSDF(frame.n, frame.dpdu, std::move(bxdf));
 }
 
 int MixMaterial::Choose(const SurfaceInteraction &si) const {

@@ -8,6 +8,8 @@
 #include "pbrt_ext/interaction.h"
 #include "pbrt_ext/textures.h"
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 
@@ -87,6 +89,9 @@ struct FabricMaterial {
     Float threadAngle = 0, threadElevation = 0;  // degrees: about N from dpdu, then toward N
     FabricSampling sampling = FabricSampling::Best;
     FabricNormalization normalization = FabricNormalization::Paper;
+    // An optional diffuse base lobe, weighted so that the total albedo stays at most 1
+    // (pbrt_ext/bxdfs/fabricdiffuse.h).
+    std::optional<SpectrumTexture> diffuse;
 
     BxDF GetBxDF(const TextureEvalContext &ctx) const;
 };
@@ -112,17 +117,20 @@ class Material {
     template <typename T>
     Material(T material) : material(std::move(material)) {}
 
-    // The BSDF at a hit, in the hit's shading frame.
-    BSDF GetBSDF(const SurfaceInteraction &si) const {
-        TextureEvalContext ctx(si);
-        BxDF bxdf = std::visit([&](const auto &m) { return m.GetBxDF(ctx); }, material);
-        return BSDF(si.shading.n, si.shading.dpdu, std::move(bxdf));
-    }
+    // The BSDF at a hit, in the hit's shading frame, perturbed by the bump or normal map if any.
+    BSDF GetBSDF(const SurfaceInteraction &si) const;
 
     const MixMaterial *AsMix() const { return std::get_if<MixMaterial>(&material); }
 
+    // pbrt-v4's "texture displacement" (bump mapping) and "string normalmap" (a tangent-space
+    // normal map read with linear encoding). Either perturbs the shading frame of every BSDF.
+    void SetDisplacement(FloatTexture displacement) { this->displacement = std::move(displacement); }
+    void SetNormalMap(std::shared_ptr<const Image> image) { normalMap = std::move(image); }
+
   private:
     Variant material;
+    std::optional<FloatTexture> displacement;
+    std::shared_ptr<const Image> normalMap;
 };
 
 }  // namespace pbrt

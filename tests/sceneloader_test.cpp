@@ -210,3 +210,16 @@ TEST(SceneLoader, PlyQuadsBecomePatchesCoveringTheirSquare) {
     for (auto [x, y] : {std::pair{1.1f, 0.f}, {0.f, -1.1f}})
         EXPECT_FALSE(hits(x, y)) << x << ", " << y;
 }
+
+TEST(SceneLoader, FabricDiffuseBaseAddsTheEnergyBoundedBaseLobe) {
+    std::string file = WriteScene("fabricdiffuse.pbrt", std::string(kHeader) + R"(
+Material "fabric" "rgb reflectance" [0.5 0.5 0.5] "float roughness" 0.3 "rgb diffuse" [0.6 0.4 0.2]
+Shape "sphere"
+)");
+    std::unique_ptr<Scene> scene = LoadScene(file, Quick());
+    pstd::optional<ShapeIntersection> hit = scene->Intersect(Ray(Point3f(0, 0, 5), Vector3f(0, 0, -1)));
+    ASSERT_TRUE(hit);
+    std::string bsdf = scene->materials[0].GetBSDF(hit->intr).ToString();
+    EXPECT_NE(bsdf.find("FabricDiffuseBxDF"), std::string::npos) << bsdf;
+    Render(*scene, {1, true});
+}

@@ -7,6 +7,7 @@
 #include "pbrt_ext/bxdfs/diffuse.h"
 #include "pbrt_ext/bxdfs/diffusetransmission.h"
 #include "pbrt_ext/bxdfs/fabric.h"
+#include "pbrt_ext/bxdfs/fabricdiffuse.h"
 #include "pbrt_ext/bxdfs/layered.h"
 #include "pbrt_ext/bxdfs/thindielectric.h"
 
@@ -19,7 +20,8 @@ class BxDF {
   public:
     using Variant =
         std::variant<DiffuseBxDF, ConductorBxDF, DielectricBxDF, ThinDielectricBxDF,
-                     DiffuseTransmissionBxDF, CoatedDiffuseBxDF, CoatedConductorBxDF, FabricBxDF>;
+                     DiffuseTransmissionBxDF, CoatedDiffuseBxDF, CoatedConductorBxDF, FabricBxDF,
+                     FabricDiffuseBxDF>;
 
     template <typename T>
     BxDF(T bxdf) : bxdf(std::move(bxdf)) {}

@@ -188,6 +188,10 @@ class FabricBxDF {
     PBRT_CPU_GPU Float Exponent() const { return n; }
     PBRT_CPU_GPU Float Normalization() const { return scale; }
     PBRT_CPU_GPU Vector3f Thread() const { return T; }
+    PBRT_CPU_GPU SampledSpectrum Color() const { return color; }
+    // An upper bound of the largest directional albedo per unit color, over all directions: 1 for
+    // UnitPeak (up to rounding); I_c G / I_o for Paper, about 0.75 at most (conservative: G >= g).
+    PBRT_CPU_GPU Float PeakAlbedo() const { return scale / UnitPeakNormalization(n, T.z, Np.z); }
 
   private:
     // Fiber coordinates of the pair (wo, wi): latitudes about T and the half angle θh.

@@ -1,6 +1,8 @@
-// Compile check: fabric.h is GPU-clean. Every member a renderer calls, inside a __global__ kernel.
+// Compile check: fabric.h and fabricdiffuse.h are GPU-clean. Every member a renderer calls, inside a
+// __global__ kernel.
 // Built by nvcc when it is installed (tests/CMakeLists.txt); nothing here runs.
 #include "pbrt_ext/bxdfs/fabric.h"
+#include "pbrt_ext/bxdfs/fabricdiffuse.h"
 
 namespace pbrt {
 
@@ -21,6 +23,14 @@ __global__ void FabricKernel(const Vector3f *wo, const Point2f *u, Float *out, i
     Float uc[1] = {u[i][1]};
     Point2f u2[1] = {u[i]};
     sum += bxdf.rho(wo[i], uc, u2).MaxComponentValue() + Float(IsReflective(bxdf.Flags()));
+    FabricDiffuseBxDF mixed(bxdf, SampledSpectrum(0.8f));
+    mixed.Regularize();
+    pstd::optional<BSDFSample> ms = mixed.Sample_f(wo[i], u[i][1], u[i], TransportMode::Radiance);
+    if (ms)
+        sum += ms->pdf + mixed.f(wo[i], ms->wi, TransportMode::Radiance)[1] +
+               mixed.PDF(wo[i], ms->wi, TransportMode::Radiance);
+    sum += mixed.rho(wo[i], uc, u2)[2] + Float(IsGlossy(mixed.Flags())) + bxdf.PeakAlbedo() +
+           FabricDiffuseBxDF::Name()[0];
     out[i] = sum;
 }
 
