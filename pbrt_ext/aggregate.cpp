@@ -1,10 +1,12 @@
 // EmbreeAggregate: Embree 3 scenes for pbrt_ext's shapes.
 #include "pbrt_ext/aggregate.h"
 
+#include "pbrt_ext/util/hash.h"
 #include "pbrt_ext/util/log.h"
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <cassert>
 #include <cstdint>
 #include <deque>
@@ -80,21 +82,110 @@ void RecordHit(RTCRayHit *rh, const RTCIntersectFunctionNArguments *args, Float 
     rh->hit.instID[0] = args->context->instID[0];
 }
 
+// pbrt-v4's HashFloat: the hash of the values, mapped to [0, 1).
+template <typename... Args>
+Float HashFloat(Args... args) {
+    return Float(uint32_t(Hash(args...))) * 0x1p-32f;
+}
+
+// pbrt-v4's alpha test of a hit at distance t along the ray (o, d), both in the geometry's own
+// space. pbrt-v4 follows a rejected hit with a new ray from it, hashed anew; hashing t with the
+// ray gives each hit along one ray its own decision in the same way, so that stacked cut-outs
+// are independent.
+bool AlphaKeeps(const FloatTexture &alpha, const SurfaceInteraction &si, const Ray &ray, Float t) {
+    Float a = alpha.Evaluate(TextureEvalContext(si));
+    if (a >= 1)
+        return true;
+    return a > 0 && HashFloat(ray.o, ray.d, t) <= a;
+}
+
+// What Embree's callbacks for one geometry read through its user pointer.
+struct CallbackData {
+    const void *shape;          // TriangleMesh, BilinearPatchMesh, Sphere or Disk
+    const FloatTexture *alpha;  // null: opaque
+};
+
+const CallbackData &DataOf(const void *userPtr) {
+    return *static_cast<const CallbackData *>(userPtr);
+}
+
+// Embree's barycentrics weight vertices 1 and 2.
+std::array<Float, 3> Barycentrics(const RTCHit &hit) {
+    return {1 - hit.u - hit.v, hit.u, hit.v};
+}
+
+// Triangle meshes with alpha only: Embree calls this for every candidate hit of closest-hit and
+// shadow queries alike, and skips the candidates it marks invalid.
+void TriangleAlphaFilter(const RTCFilterFunctionNArguments *args) {
+    assert(args->N == 1);
+    if (!args->valid[0])
+        return;
+    const CallbackData &data = DataOf(args->geometryUserPtr);
+    const RTCRay &r = *reinterpret_cast<const RTCRay *>(args->ray);
+    const RTCHit &hit = *reinterpret_cast<const RTCHit *>(args->hit);
+    Ray ray = RayFrom(r);
+    SurfaceInteraction si = Triangle::InteractionFromIntersection(
+        static_cast<const TriangleMesh *>(data.shape), int(hit.primID), Barycentrics(hit),
+        -Normalize(ray.d));
+    if (!AlphaKeeps(*data.alpha, si, ray, r.tfar))  // tfar is the candidate's distance
+        args->valid[0] = 0;
+}
+
+// How many times a ray can cross the quadric: the alpha test looks no further.
+template <typename Quadric>
+constexpr int kMaxQuadricHits = 1;
+template <>
+constexpr int kMaxQuadricHits<Sphere> = 2;
+
+// The first hit from `hit` on that the alpha test keeps. Past a rejected hit the search goes on
+// with a ray from just beyond it, as pbrt-v4's continuation ray does. The step (1e-5 of the
+// point's largest coordinate) is ~100 times the rounding of a ray origin placed there, so the
+// rejected point is not found again; a ray that crosses less than that much of the quadric
+// loses the farther crossing.
+template <typename Quadric>
+pstd::optional<QuadricIntersection> FirstKept(const Quadric &shape, const FloatTexture &alpha,
+                                              const Ray &ray, Float tMax,
+                                              pstd::optional<QuadricIntersection> hit) {
+    Vector3f wo = -Normalize(ray.d);
+    for (int tested = 1; hit; ++tested) {
+        if (AlphaKeeps(alpha, shape.InteractionFromIntersection(*hit, wo), ray, hit->tHit))
+            return hit;
+        if (tested == kMaxQuadricHits<Quadric>)
+            return {};
+        Vector3f p = Abs(Vector3f(ray(hit->tHit)));
+        Float t0 = hit->tHit + 1e-5f * std::max({p.x, p.y, p.z}) / Length(ray.d);
+        hit = shape.BasicIntersect(Ray(ray(t0), ray.d), tMax - t0);
+        if (hit)
+            hit->tHit += t0;
+    }
+    return {};
+}
+
 // Spheres and disks: one primitive per geometry.
 template <typename Quadric>
 struct QuadricCallbacks {
+    static const Quadric &ShapeOf(const void *userPtr) {
+        return *static_cast<const Quadric *>(DataOf(userPtr).shape);
+    }
+    // The nearest hit with tnear <= t < tfar that the alpha test keeps.
+    static pstd::optional<QuadricIntersection> Hit(const void *userPtr, const RTCRay &r) {
+        const Quadric &shape = ShapeOf(userPtr);
+        Ray ray = RayFrom(r);
+        pstd::optional<QuadricIntersection> isect = shape.BasicIntersect(ray, r.tfar);
+        if (!isect || isect->tHit < r.tnear)
+            return {};
+        const FloatTexture *alpha = DataOf(userPtr).alpha;
+        return alpha ? FirstKept(shape, *alpha, ray, r.tfar, isect) : isect;
+    }
     static void Bounds(const RTCBoundsFunctionArguments *args) {
-        SetBounds(static_cast<const Quadric *>(args->geometryUserPtr)->Bounds(), args->bounds_o);
+        SetBounds(ShapeOf(args->geometryUserPtr).Bounds(), args->bounds_o);
     }
     static void Intersect(const RTCIntersectFunctionNArguments *args) {
         assert(args->N == 1);
         if (!args->valid[0])
             return;
         RTCRayHit *rh = reinterpret_cast<RTCRayHit *>(args->rayhit);
-        const Quadric *shape = static_cast<const Quadric *>(args->geometryUserPtr);
-        pstd::optional<QuadricIntersection> isect =
-            shape->BasicIntersect(RayFrom(rh->ray), rh->ray.tfar);
-        if (isect && isect->tHit >= rh->ray.tnear)
+        if (pstd::optional<QuadricIntersection> isect = Hit(args->geometryUserPtr, rh->ray))
             RecordHit(rh, args, isect->tHit, 0, 0, isect->pObj);
     }
     static void Occluded(const RTCOccludedFunctionNArguments *args) {
@@ -102,21 +193,40 @@ struct QuadricCallbacks {
         if (!args->valid[0])
             return;
         RTCRay *ray = reinterpret_cast<RTCRay *>(args->ray);
-        const Quadric *shape = static_cast<const Quadric *>(args->geometryUserPtr);
-        pstd::optional<QuadricIntersection> isect = shape->BasicIntersect(RayFrom(*ray), ray->tfar);
-        if (isect && isect->tHit >= ray->tnear)
+        if (Hit(args->geometryUserPtr, *ray))
             ray->tfar = -Infinity;  // Embree's mark for an occluded ray
     }
 };
 
 struct PatchCallbacks {
-    static std::array<Point3f, 4> Corners(const void *meshPtr, unsigned primID) {
-        const BilinearPatchMesh *mesh = static_cast<const BilinearPatchMesh *>(meshPtr);
-        const int *v = &mesh->indices[4 * primID];
-        return {mesh->p[v[0]], mesh->p[v[1]], mesh->p[v[2]], mesh->p[v[3]]};
+    static const BilinearPatchMesh &MeshOf(const void *userPtr) {
+        return *static_cast<const BilinearPatchMesh *>(DataOf(userPtr).shape);
+    }
+    static std::array<Point3f, 4> Corners(const BilinearPatchMesh &mesh, unsigned primID) {
+        const int *v = &mesh.indices[4 * primID];
+        return {mesh.p[v[0]], mesh.p[v[1]], mesh.p[v[2]], mesh.p[v[3]]};
+    }
+    // The nearest hit with tnear <= t < tfar, if the alpha test keeps it. A curved patch may be
+    // crossed twice; the farther crossing is not looked for behind a rejected one.
+    static pstd::optional<BilinearIntersection> Hit(const void *userPtr, unsigned primID,
+                                                    const RTCRay &r) {
+        const BilinearPatchMesh &mesh = MeshOf(userPtr);
+        auto [p00, p10, p01, p11] = Corners(mesh, primID);
+        Ray ray = RayFrom(r);
+        pstd::optional<BilinearIntersection> hit =
+            IntersectBilinearPatch(ray, r.tfar, p00, p10, p01, p11);
+        if (!hit || hit->t < r.tnear)
+            return {};
+        const FloatTexture *alpha = DataOf(userPtr).alpha;
+        if (alpha && !AlphaKeeps(*alpha,
+                                 BilinearPatch::InteractionFromIntersection(
+                                     &mesh, int(primID), hit->uv, -Normalize(ray.d)),
+                                 ray, hit->t))
+            return {};
+        return hit;
     }
     static void Bounds(const RTCBoundsFunctionArguments *args) {
-        auto [p00, p10, p01, p11] = Corners(args->geometryUserPtr, args->primID);
+        auto [p00, p10, p01, p11] = Corners(MeshOf(args->geometryUserPtr), args->primID);
         SetBounds(Union(Bounds3f(p00, p10), Bounds3f(p01, p11)), args->bounds_o);
     }
     static void Intersect(const RTCIntersectFunctionNArguments *args) {
@@ -124,10 +234,8 @@ struct PatchCallbacks {
         if (!args->valid[0])
             return;
         RTCRayHit *rh = reinterpret_cast<RTCRayHit *>(args->rayhit);
-        auto [p00, p10, p01, p11] = Corners(args->geometryUserPtr, args->primID);
-        pstd::optional<BilinearIntersection> hit =
-            IntersectBilinearPatch(RayFrom(rh->ray), rh->ray.tfar, p00, p10, p01, p11);
-        if (hit && hit->t >= rh->ray.tnear)
+        if (pstd::optional<BilinearIntersection> hit =
+                Hit(args->geometryUserPtr, args->primID, rh->ray))
             RecordHit(rh, args, hit->t, hit->uv[0], hit->uv[1], Point3f());
     }
     static void Occluded(const RTCOccludedFunctionNArguments *args) {
@@ -135,10 +243,7 @@ struct PatchCallbacks {
         if (!args->valid[0])
             return;
         RTCRay *ray = reinterpret_cast<RTCRay *>(args->ray);
-        auto [p00, p10, p01, p11] = Corners(args->geometryUserPtr, args->primID);
-        pstd::optional<BilinearIntersection> hit =
-            IntersectBilinearPatch(RayFrom(*ray), ray->tfar, p00, p10, p01, p11);
-        if (hit && hit->t >= ray->tnear)
+        if (Hit(args->geometryUserPtr, args->primID, *ray))
             ray->tfar = -Infinity;
     }
 };
@@ -178,6 +283,7 @@ struct EmbreeAggregate::Impl {
     std::deque<Disk> disks;
     std::vector<std::shared_ptr<const TriangleMesh>> triangleMeshes;
     std::vector<std::shared_ptr<const BilinearPatchMesh>> patchMeshes;
+    std::deque<CallbackData> callbackData;
 
     Impl() {
         device = rtcNewDevice(nullptr);
@@ -222,12 +328,18 @@ struct EmbreeAggregate::Impl {
         return int(id);
     }
 
+    // Where geometry's callbacks find the shape and its alpha texture.
+    void *NewCallbackData(const void *shape, const PrimitiveAttributes &attrs) {
+        callbackData.push_back({shape, attrs.alpha.get()});
+        return &callbackData.back();
+    }
+
     template <typename Callbacks>
     int AddUserGeometry(GeometryKind kind, const void *shape, unsigned count,
                         PrimitiveAttributes attrs) {
         RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
         rtcSetGeometryUserPrimitiveCount(geom, count);
-        rtcSetGeometryUserData(geom, const_cast<void *>(shape));
+        rtcSetGeometryUserData(geom, NewCallbackData(shape, attrs));
         rtcSetGeometryBoundsFunction(geom, Callbacks::Bounds, nullptr);
         rtcSetGeometryIntersectFunction(geom, Callbacks::Intersect);
         rtcSetGeometryOccludedFunction(geom, Callbacks::Occluded);
@@ -246,10 +358,9 @@ struct EmbreeAggregate::Impl {
         const RTCHit &hit = rh.hit;
         switch (g.kind) {
         case GeometryKind::Triangles:
-            // Embree's barycentrics weight vertices 1 and 2.
             return Triangle::InteractionFromIntersection(
-                static_cast<const TriangleMesh *>(g.shape), int(hit.primID),
-                {1 - hit.u - hit.v, hit.u, hit.v}, wo);
+                static_cast<const TriangleMesh *>(g.shape), int(hit.primID), Barycentrics(hit),
+                wo);
         case GeometryKind::BilinearPatches:
             return BilinearPatch::InteractionFromIntersection(
                 static_cast<const BilinearPatchMesh *>(g.shape), int(hit.primID),
@@ -287,6 +398,15 @@ int EmbreeAggregate::AddTriangleMesh(std::shared_ptr<const TriangleMesh> mesh,
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                mesh->indices.data(), 0, 3 * sizeof(unsigned),
                                size_t(mesh->NumTriangles()));
+    // Only meshes with alpha pay for a filter call per candidate hit.
+    if (attrs.alpha) {
+        if (!rtcGetDeviceProperty(impl->device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED))
+            throw std::runtime_error("Embree was built without filter functions: alpha cut-outs "
+                                     "on triangle meshes need them");
+        rtcSetGeometryUserData(geom, impl->NewCallbackData(mesh.get(), attrs));
+        rtcSetGeometryIntersectFilterFunction(geom, TriangleAlphaFilter);
+        rtcSetGeometryOccludedFilterFunction(geom, TriangleAlphaFilter);
+    }
     impl->triangleMeshes.push_back(mesh);
     return impl->Attach(geom, {GeometryKind::Triangles, mesh.get(), attrs});
 }

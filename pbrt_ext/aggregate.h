@@ -4,7 +4,8 @@
 // Triangle meshes are Embree's native triangles; spheres, disks and bilinear patches are Embree
 // user geometry that calls the shapes' own intersection routines; object instances are Embree
 // instances of a shared sub-scene. Every geometry carries PrimitiveAttributes, which Intersect
-// copies into the SurfaceInteraction. Build the aggregate on one thread (Add..., then Commit);
+// copies into the SurfaceInteraction, and may carry an alpha texture that cuts the surface out
+// (pbrt-v4's "alpha" shape parameter; see PrimitiveAttributes::alpha). Build the aggregate on one thread (Add..., then Commit);
 // Intersect and IntersectP may then be called from any number of threads.
 //
 // Performance: Embree wants denormals flushed to zero; each rendering thread should set
@@ -14,6 +15,7 @@
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/ray.h"
 #include "pbrt_ext/shapes.h"
+#include "pbrt_ext/textures.h"
 #include "pbrt_ext/util/bounds.h"
 #include "pbrt_ext/util/pstd.h"
 #include "pbrt_ext/util/transform.h"
@@ -29,6 +31,10 @@ struct PrimitiveAttributes {
     // areaLightBase + i. -1: not emissive. Ignored (with a warning) inside an object, since
     // every instance would share one light, as pbrt-v4 also refuses.
     int areaLightBase = -1;
+    // pbrt-v4's alpha test, for closest-hit and shadow rays alike: a hit where alpha(p, n, uv)
+    // = a < 1 is kept with probability a, decided by a hash of the ray and the hit distance, so
+    // that the same query always gives the same answer. Null: opaque, and no cost at all.
+    std::shared_ptr<const FloatTexture> alpha = nullptr;
 };
 
 class EmbreeAggregate {

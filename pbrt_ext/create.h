@@ -64,8 +64,9 @@ std::optional<Light> CreateLight(const TransformedSceneEntity &light, const std:
 AreaLightDescription CreateAreaLight(const SceneEntity &areaLight, const std::string &folder);
 
 // Shapes (create_shapes.cpp): adds the shape to the builder, or warns and skips types this
-// renderer lacks.
+// renderer lacks. The alpha parameter (a float or a float texture) comes through `textures`,
+// whose folder is also where meshes are looked for.
 void AddShape(SceneBuilder &builder, const ShapeSceneEntity &shape, int material,
-              std::optional<AreaLightDescription> emission, const std::string &folder);
+              std::optional<AreaLightDescription> emission, TextureResolver &textures);
 
 }  // namespace pbrt

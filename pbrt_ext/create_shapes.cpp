@@ -16,6 +16,21 @@ std::string Resolve(const std::string &folder, const std::string &path) {
     return p.is_absolute() ? path : (std::filesystem::path(folder) / p).string();
 }
 
+// What a shape is made of, besides its geometry.
+struct Appearance {
+    int material;
+    std::optional<AreaLightDescription> emission;
+    std::optional<FloatTexture> alpha;
+};
+
+// pbrt-v4's alpha parameter: a float texture, or a constant below 1; alpha 1 needs no test.
+std::optional<FloatTexture> Alpha(const ParameterDictionary &p, TextureResolver &textures) {
+    if (!p.HasParameter("alpha") ||
+        (p.ParameterType("alpha") != "texture" && p.GetOneFloat("alpha", 1) >= 1))
+        return {};
+    return textures.Float(p, "alpha", 1);
+}
+
 // Mesh construction errors (index ranges, sizes) at the shape's location.
 template <typename Make>
 auto AtShape(const ShapeSceneEntity &e, Make make) {
@@ -28,8 +43,8 @@ auto AtShape(const ShapeSceneEntity &e, Make make) {
     }
 }
 
-void AddTriangleMesh(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
-                     std::optional<AreaLightDescription> emission) {
+void AddTriangleMesh(SceneBuilder &builder, const ShapeSceneEntity &e,
+                     const Appearance &a) {
     const ParameterDictionary &p = e.parameters;
     std::vector<int> indices = p.GetIntArray("indices");
     std::vector<Point3f> P = p.GetPoint3fArray("P");
@@ -50,11 +65,11 @@ void AddTriangleMesh(SceneBuilder &builder, const ShapeSceneEntity &e, int mater
             e.worldFromObject, e.reverseOrientation, std::move(indices), std::move(P),
             std::move(N), std::move(uv)));
     });
-    builder.AddTriangleMesh(std::move(mesh), material, emission);
+    builder.AddTriangleMesh(std::move(mesh), a.material, a.emission, a.alpha);
 }
 
-void AddPlyMesh(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
-                std::optional<AreaLightDescription> emission, const std::string &folder) {
+void AddPlyMesh(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearance &a,
+                const std::string &folder) {
     const ParameterDictionary &p = e.parameters;
     std::string filename = p.GetOneString("filename", "");
     if (filename.empty())
@@ -75,7 +90,7 @@ void AddPlyMesh(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
             return std::make_shared<TriangleMesh>(MakeTriangleMesh(
                 e.worldFromObject, e.reverseOrientation, ply.triIndices, ply.p, ply.n, ply.uv));
         });
-        builder.AddTriangleMesh(std::move(mesh), material, emission);
+        builder.AddTriangleMesh(std::move(mesh), a.material, a.emission, a.alpha);
     }
     if (!ply.quadIndices.empty()) {
         // ReadPly already lists each quad as a bilinear patch's p00 p10 p01 p11.
@@ -83,12 +98,12 @@ void AddPlyMesh(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
             return std::make_shared<BilinearPatchMesh>(MakeBilinearPatchMesh(
                 e.worldFromObject, e.reverseOrientation, ply.quadIndices, ply.p, ply.n, ply.uv));
         });
-        builder.AddBilinearPatchMesh(std::move(mesh), material, emission);
+        builder.AddBilinearPatchMesh(std::move(mesh), a.material, a.emission, a.alpha);
     }
 }
 
-void AddBilinearMesh(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
-                     std::optional<AreaLightDescription> emission) {
+void AddBilinearMesh(SceneBuilder &builder, const ShapeSceneEntity &e,
+                     const Appearance &a) {
     const ParameterDictionary &p = e.parameters;
     std::vector<int> indices = p.GetIntArray("indices");
     std::vector<Point3f> P = p.GetPoint3fArray("P");
@@ -104,13 +119,12 @@ void AddBilinearMesh(SceneBuilder &builder, const ShapeSceneEntity &e, int mater
             MakeBilinearPatchMesh(e.worldFromObject, e.reverseOrientation, std::move(indices),
                                   std::move(P), std::move(N), std::move(uv)));
     });
-    builder.AddBilinearPatchMesh(std::move(mesh), material, emission);
+    builder.AddBilinearPatchMesh(std::move(mesh), a.material, a.emission, a.alpha);
 }
 
 // pbrt-v4's cylinder (radius, zmin, zmax, phimax) as a fine triangle mesh with the cylinder's
 // exact normals and (u, v) = (φ/φmax, (z - zmin)/(zmax - zmin)).
-void AddCylinder(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
-                 std::optional<AreaLightDescription> emission) {
+void AddCylinder(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearance &a) {
     constexpr int kSegments = 256;
     const ParameterDictionary &p = e.parameters;
     Float radius = p.GetOneFloat("radius", 1), zMin = p.GetOneFloat("zmin", -1),
@@ -136,44 +150,37 @@ void AddCylinder(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
     auto mesh = std::make_shared<TriangleMesh>(MakeTriangleMesh(
         e.worldFromObject, e.reverseOrientation, std::move(indices), std::move(P), std::move(N),
         std::move(uv)));
-    builder.AddTriangleMesh(std::move(mesh), material, emission);
+    builder.AddTriangleMesh(std::move(mesh), a.material, a.emission, a.alpha);
 }
 
 }  // namespace
 
 void AddShape(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
-              std::optional<AreaLightDescription> emission, const std::string &folder) {
+              std::optional<AreaLightDescription> emission, TextureResolver &textures) {
     const ParameterDictionary &p = e.parameters;
-    if (p.HasParameter("alpha")) {
-        // Read either form so that it is not reported unused; cut-outs are not rendered.
-        if (p.ParameterType("alpha") == "texture")
-            p.GetTexture("alpha");
-        else
-            p.GetOneFloat("alpha", 1);
-        WarningAt(*p.Loc("alpha"), "alpha cut-outs are not supported: the shape is opaque");
-    }
+    Appearance a{material, std::move(emission), Alpha(p, textures)};
     if (e.name == "trianglemesh")
-        return AddTriangleMesh(builder, e, material, emission);
+        return AddTriangleMesh(builder, e, a);
     if (e.name == "plymesh")
-        return AddPlyMesh(builder, e, material, emission, folder);
+        return AddPlyMesh(builder, e, a, textures.Folder());
     if (e.name == "bilinearmesh")
-        return AddBilinearMesh(builder, e, material, emission);
+        return AddBilinearMesh(builder, e, a);
     if (e.name == "cylinder")
-        return AddCylinder(builder, e, material, emission);
+        return AddCylinder(builder, e, a);
     if (e.name == "sphere") {
         Float radius = p.GetOneFloat("radius", 1);
         Sphere sphere(e.worldFromObject, e.reverseOrientation, radius,
                       p.GetOneFloat("zmin", -radius), p.GetOneFloat("zmax", radius),
                       p.GetOneFloat("phimax", 360));
         p.ReportUnused();
-        return builder.AddSphere(sphere, material, emission);
+        return builder.AddSphere(sphere, a.material, a.emission, a.alpha);
     }
     if (e.name == "disk") {
         Disk disk(e.worldFromObject, e.reverseOrientation, p.GetOneFloat("height", 0),
                   p.GetOneFloat("radius", 1), p.GetOneFloat("innerradius", 0),
                   p.GetOneFloat("phimax", 360));
         p.ReportUnused();
-        return builder.AddDisk(disk, material, emission);
+        return builder.AddDisk(disk, a.material, a.emission, a.alpha);
     }
     if (e.name == "curve" || e.name == "loopsubdiv") {
         WarningAt(e.loc, "Shape \"%s\" is not supported: skipped", e.name.c_str());

@@ -15,6 +15,17 @@ int SceneBuilder::AddMaterial(Material material) {
     return int(scene->materials.size()) - 1;
 }
 
+namespace {
+
+PrimitiveAttributes Attributes(int material, std::optional<FloatTexture> alpha) {
+    PrimitiveAttributes attributes{material, -1, nullptr};
+    if (alpha)
+        attributes.alpha = std::make_shared<const FloatTexture>(std::move(*alpha));
+    return attributes;
+}
+
+}  // namespace
+
 template <typename ShapeFor>
 int SceneBuilder::AddAreaLights(const AreaLightDescription &emission, int count,
                                 ShapeFor shapeFor) {
@@ -26,9 +37,10 @@ int SceneBuilder::AddAreaLights(const AreaLightDescription &emission, int count,
 }
 
 void SceneBuilder::AddTriangleMesh(std::shared_ptr<TriangleMesh> mesh, int material,
-                                   std::optional<AreaLightDescription> emission) {
+                                   std::optional<AreaLightDescription> emission,
+                                   std::optional<FloatTexture> alpha) {
     emission = EmissionOutsideObjects(emission);
-    PrimitiveAttributes attributes{material, -1};
+    PrimitiveAttributes attributes = Attributes(material, std::move(alpha));
     if (emission)
         attributes.areaLightBase =
             AddAreaLights(*emission, mesh->NumTriangles(),
@@ -37,9 +49,10 @@ void SceneBuilder::AddTriangleMesh(std::shared_ptr<TriangleMesh> mesh, int mater
 }
 
 void SceneBuilder::AddBilinearPatchMesh(std::shared_ptr<BilinearPatchMesh> mesh, int material,
-                                        std::optional<AreaLightDescription> emission) {
+                                        std::optional<AreaLightDescription> emission,
+                                        std::optional<FloatTexture> alpha) {
     emission = EmissionOutsideObjects(emission);
-    PrimitiveAttributes attributes{material, -1};
+    PrimitiveAttributes attributes = Attributes(material, std::move(alpha));
     if (emission)
         attributes.areaLightBase =
             AddAreaLights(*emission, mesh->NumPatches(),
@@ -48,18 +61,20 @@ void SceneBuilder::AddBilinearPatchMesh(std::shared_ptr<BilinearPatchMesh> mesh,
 }
 
 void SceneBuilder::AddSphere(const Sphere &sphere, int material,
-                             std::optional<AreaLightDescription> emission) {
+                             std::optional<AreaLightDescription> emission,
+                             std::optional<FloatTexture> alpha) {
     emission = EmissionOutsideObjects(emission);
-    PrimitiveAttributes attributes{material, -1};
+    PrimitiveAttributes attributes = Attributes(material, std::move(alpha));
     if (emission)
         attributes.areaLightBase = AddAreaLights(*emission, 1, [&](int) { return Shape(sphere); });
     scene->aggregate.AddSphere(sphere, attributes);
 }
 
 void SceneBuilder::AddDisk(const Disk &disk, int material,
-                           std::optional<AreaLightDescription> emission) {
+                           std::optional<AreaLightDescription> emission,
+                           std::optional<FloatTexture> alpha) {
     emission = EmissionOutsideObjects(emission);
-    PrimitiveAttributes attributes{material, -1};
+    PrimitiveAttributes attributes = Attributes(material, std::move(alpha));
     if (emission)
         attributes.areaLightBase = AddAreaLights(*emission, 1, [&](int) { return Shape(disk); });
     scene->aggregate.AddDisk(disk, attributes);

@@ -87,15 +87,20 @@ class SceneBuilder {
     // Materials are referenced by the index this returns.
     int AddMaterial(Material material);
 
-    // Shapes, each with a material (-1: an interface, invisible to shading) and optional emission.
+    // Shapes, each with a material (-1: an interface, invisible to shading), optional emission,
+    // and an optional alpha texture that cuts the shape out where it is below 1 (pbrt-v4's
+    // "alpha"; PrimitiveAttributes::alpha). The emission of a cut-out shape is not masked.
     void AddTriangleMesh(std::shared_ptr<TriangleMesh> mesh, int material,
-                         std::optional<AreaLightDescription> emission = {});
+                         std::optional<AreaLightDescription> emission = {},
+                         std::optional<FloatTexture> alpha = {});
     void AddBilinearPatchMesh(std::shared_ptr<BilinearPatchMesh> mesh, int material,
-                              std::optional<AreaLightDescription> emission = {});
+                              std::optional<AreaLightDescription> emission = {},
+                              std::optional<FloatTexture> alpha = {});
     void AddSphere(const Sphere &sphere, int material,
-                   std::optional<AreaLightDescription> emission = {});
-    void AddDisk(const Disk &disk, int material,
-                 std::optional<AreaLightDescription> emission = {});
+                   std::optional<AreaLightDescription> emission = {},
+                   std::optional<FloatTexture> alpha = {});
+    void AddDisk(const Disk &disk, int material, std::optional<AreaLightDescription> emission = {},
+                 std::optional<FloatTexture> alpha = {});
 
     // Object instancing (pbrt-v4's ObjectBegin/ObjectEnd/ObjectInstance): shapes added between
     // BeginObject and EndObject form a named object, placed by each AddObjectInstance. Objects

@@ -78,26 +78,26 @@ void WarnAboutOptions(const SceneDescription &scene) {
 }
 
 void AddShapes(const SceneDescription &scene, const std::vector<int> &indices,
-               SceneBuilder &builder, MaterialResolver &materials, const std::string &folder) {
+               SceneBuilder &builder, MaterialResolver &materials, TextureResolver &textures) {
     for (int i : indices) {
         const ShapeSceneEntity &shape = scene.shapes[i];
         std::optional<AreaLightDescription> emission;
         if (shape.areaLight)
-            emission = CreateAreaLight(*shape.areaLight, folder);
-        AddShape(builder, shape, materials.For(shape), emission, folder);
+            emission = CreateAreaLight(*shape.areaLight, textures.Folder());
+        AddShape(builder, shape, materials.For(shape), emission, textures);
     }
 }
 
 // Objects that some instance places, each defined once in the aggregate, then the instances.
 void AddInstances(const SceneDescription &scene, SceneBuilder &builder,
-                  MaterialResolver &materials, const std::string &folder) {
+                  MaterialResolver &materials, TextureResolver &textures) {
     std::set<std::string> used;
     for (const InstanceSceneEntity &instance : scene.instances)
         used.insert(instance.name);
     for (const std::string &name : used) {
         const InstanceDefinitionSceneEntity &object = scene.instanceDefinitions.at(name);
         builder.BeginObject(name);
-        AddShapes(scene, object.shapeIndices, builder, materials, folder);
+        AddShapes(scene, object.shapeIndices, builder, materials, textures);
         builder.EndObject();
     }
     for (const InstanceSceneEntity &instance : scene.instances)
@@ -128,8 +128,8 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
     for (size_t i = 0; i < scene.shapes.size(); ++i)
         if (scene.shapes[i].insideObject.empty())
             worldShapes.push_back(int(i));
-    AddShapes(scene, worldShapes, builder, materials, folder);
-    AddInstances(scene, builder, materials, folder);
+    AddShapes(scene, worldShapes, builder, materials, textures);
+    AddInstances(scene, builder, materials, textures);
     for (const TransformedSceneEntity &light : scene.lights)
         if (std::optional<Light> l = CreateLight(light, folder))
             builder.AddLight(std::move(*l));
