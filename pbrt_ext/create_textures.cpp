@@ -43,6 +43,9 @@ ImageTexture CreateImageTexture(const TransformedSceneEntity &e, const std::stri
     std::filesystem::path path(filename);
     if (!path.is_absolute())
         path = std::filesystem::path(folder) / path;
+    if (!std::filesystem::is_regular_file(path))
+        throw ParseError(*p.Loc("filename"), "cannot open image \"" + filename + "\" (looked for " +
+                                                 path.string() + ")");
     std::string encodingName = p.GetOneString("encoding", "sRGB");
     std::optional<ColorEncoding> encoding = ColorEncoding::Get(encodingName);
     if (!encoding)
