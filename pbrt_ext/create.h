@@ -8,12 +8,19 @@
 #include "pbrt_ext/scenedescription.h"
 #include "pbrt_ext/spectra.h"
 
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 
 namespace pbrt {
+
+// A file named in the scene: relative paths are relative to the main scene file's folder (pbrt-v4).
+inline std::string ResolvePath(const std::string &folder, const std::string &path) {
+    std::filesystem::path p(path);
+    return p.is_absolute() ? path : (std::filesystem::path(folder) / p).string();
+}
 
 // Scene options (create_options.cpp).
 Filter CreateFilter(const SceneEntity &filter);

@@ -35,11 +35,6 @@ Transform RotationFromZ(Vector3f w) {
                                      f.y.z, f.z.z, 0, 0, 0, 0, 1));
 }
 
-std::string Resolve(const std::string &folder, const std::string &path) {
-    std::filesystem::path p(path);
-    return p.is_absolute() ? path : (std::filesystem::path(folder) / p).string();
-}
-
 Light CreateSpotLight(const TransformedSceneEntity &e, SampledSpectrum I, Float scale) {
     const ParameterDictionary &p = e.parameters;
     Float coneAngle = p.GetOneFloat("coneangle", 30), coneDelta = p.GetOneFloat("conedelta", 5);
@@ -79,7 +74,11 @@ Light CreateInfiniteLight(const TransformedSceneEntity &e, Float scale,
         WarningAt(*p.Loc("illuminance"), "\"illuminance\" of an image infinite light is not "
                                          "supported: using \"scale\" alone");
     p.ReportUnused();
-    return ImageInfiniteLight(e.worldFromObject, Image::Read(Resolve(folder, filename)), scale);
+    std::string path = ResolvePath(folder, filename);
+    if (!std::filesystem::is_regular_file(path))
+        throw ParseError(*p.Loc("filename"), "cannot open image \"" + filename + "\" (looked for " +
+                                                 path + ")");
+    return ImageInfiniteLight(e.worldFromObject, Image::Read(path), scale);
 }
 
 }  // namespace

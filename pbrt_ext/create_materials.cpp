@@ -3,8 +3,6 @@
 
 #include "pbrt_ext/util/error.h"
 
-#include <filesystem>
-
 namespace pbrt {
 
 namespace {
@@ -105,10 +103,8 @@ void SetShadingPerturbation(const ParameterDictionary &p, TextureResolver &textu
     if (p.HasParameter("displacement"))
         throw ParseError(*p.Loc("normalmap"), "a material takes \"displacement\" or \"normalmap\", "
                                               "not both");
-    std::filesystem::path path(normalMap);
-    if (!path.is_absolute())
-        path = std::filesystem::path(textures.Folder()) / path;
-    m->SetNormalMap(ImageTextureCache::Get(path.string(), ColorEncoding::Linear()));
+    m->SetNormalMap(
+        ImageTextureCache::Get(ResolvePath(textures.Folder(), normalMap), ColorEncoding::Linear()));
 }
 
 }  // namespace

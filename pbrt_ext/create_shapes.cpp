@@ -11,11 +11,6 @@ namespace pbrt {
 
 namespace {
 
-std::string Resolve(const std::string &folder, const std::string &path) {
-    std::filesystem::path p(path);
-    return p.is_absolute() ? path : (std::filesystem::path(folder) / p).string();
-}
-
 // What a shape is made of, besides its geometry.
 struct Appearance {
     int material;
@@ -80,7 +75,7 @@ void AddPlyMesh(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearan
         WarningAt(*p.Loc("displacement"), "plymesh displacement is not supported: ignored");
     }
     p.ReportUnused();
-    std::string path = Resolve(folder, filename);
+    std::string path = ResolvePath(folder, filename);
     if (!std::filesystem::is_regular_file(path))
         throw ParseError(*p.Loc("filename"), "cannot open PLY file \"" + filename +
                                                  "\" (looked for " + path + ")");

@@ -40,12 +40,10 @@ ImageTexture CreateImageTexture(const TransformedSceneEntity &e, const std::stri
     std::string filename = p.GetOneString("filename", "");
     if (filename.empty())
         throw ParseError(e.loc, "imagemap needs \"string filename\"");
-    std::filesystem::path path(filename);
-    if (!path.is_absolute())
-        path = std::filesystem::path(folder) / path;
+    std::string path = ResolvePath(folder, filename);
     if (!std::filesystem::is_regular_file(path))
         throw ParseError(*p.Loc("filename"), "cannot open image \"" + filename + "\" (looked for " +
-                                                 path.string() + ")");
+                                                 path + ")");
     std::string encodingName = p.GetOneString("encoding", "sRGB");
     std::optional<ColorEncoding> encoding = ColorEncoding::Get(encodingName);
     if (!encoding)
@@ -65,7 +63,7 @@ ImageTexture CreateImageTexture(const TransformedSceneEntity &e, const std::stri
     t.wrapMode = *wrapMode;
     t.scale = p.GetOneFloat("scale", 1);
     t.invert = p.GetOneBool("invert", false);
-    t.image = ImageTextureCache::Get(path.string(), *encoding);
+    t.image = ImageTextureCache::Get(path, *encoding);
     return t;
 }
 

@@ -232,6 +232,7 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
         {"load_bad_fabric_normalization.pbrt",
          ":3:19: error: unknown fabric normalization \"energy\": expected paper or unitpeak"},
         {"load_missing_image.pbrt", ":3:35: error: cannot open image \"no-such-image.png\""},
+        {"load_missing_environment.pbrt", ":3:24: error: cannot open image \"no-such-sky.exr\""},
         // The included file is named as resolved, which depends on the checkout's path.
         {"load_missing_include.pbrt", ":3:1: error: cannot open included file \""},
         {"load_missing_ply.pbrt", ":3:17: error: cannot open PLY file \"no-such-mesh.ply\""},
