@@ -1,0 +1,159 @@
+// The noise-to-time study (issue 5): how fast each fabric sampler and each path strategy removes
+// noise from the scenes of scenes/convergence/ (the paper's Fig. 3 cylinder at three roughnesses
+// and a Cornell box with fabric boxes).
+//
+// Each benchmark, named Convergence/<scene>/<fabric sampler>/<strategy>/spp:<n>, renders the scene
+// once at n spp and compares it with the scene's reference image, recording the counters
+//   seconds     the render's own time (scene loading excluded),
+//   relMSE      mean over pixels and channels of (x - r)^2 / (r^2 + 1e-2),
+//   efficiency  1 / (relMSE * seconds), the higher the better,
+// plus spp and reference_spp. scripts/plot_convergence.py turns the JSON output
+// (--benchmark_format=json or --benchmark_out=<file>) into plots and a table.
+//
+// A reference is rendered once at kReferenceSpp with MIS and the "best" fabric sampler and cached
+// as <PBRT_EXT_BENCH_DIR, default build/bench>/reference/<scene>.exr (relative to the working
+// folder); it is rendered again when missing or older than a scene file of its folder (the
+// cylinders share an include). It uses another seed than the sweep, so that no sweep image shares
+// its samples with the reference.
+#include "pbrt_ext/render.h"
+#include "pbrt_ext/scene.h"
+#include "pbrt_ext/sceneloader.h"
+#include "pbrt_ext/util/image.h"
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+using namespace pbrt;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char *kScenes[] = {"cylinder_r0.1", "cylinder_r0.3", "cylinder_r0.6",
+                                   "cornell_fabric"};
+constexpr const char *kFabricSamplers[] = {"uniform", "cosine", "paper", "best"};
+constexpr const char *kStrategies[] = {"bsdf", "light", "mis"};
+constexpr int kSweepSpp[] = {4, 16, 64, 256};
+// Its own noise adds about 1/16 of the best sweep image's error at 256 spp; the plot script
+// subtracts that floor. Each reference takes about 30 s on 2 cores.
+constexpr int kReferenceSpp = 4096;
+constexpr int kReferenceSeed = 1;
+// Keeps the relative error of near-black pixels finite without letting them dominate.
+constexpr double kRelMSEEpsilon = 1e-2;
+
+fs::path ScenePath(const std::string &scene) {
+    return fs::path(PBRT_EXT_SOURCE_DIR) / "scenes" / "convergence" / (scene + ".pbrt");
+}
+
+fs::path ReferencePath(const std::string &scene) {
+    const char *dir = std::getenv("PBRT_EXT_BENCH_DIR");
+    return fs::path(dir ? dir : "build/bench") / "reference" / (scene + ".exr");
+}
+
+std::unique_ptr<Scene> LoadQuietly(const std::string &scene, RenderOverrides overrides) {
+    overrides.quiet = true;
+    return LoadScene(ScenePath(scene).string(), overrides);
+}
+
+RenderStatistics RenderQuietly(Scene &scene) { return Render(scene, {0, true}); }
+
+void WriteReference(const std::string &scene, const fs::path &cached) {
+    RenderOverrides overrides;
+    overrides.spp = kReferenceSpp;
+    overrides.seed = kReferenceSeed;
+    overrides.strategy = PathStrategy::MIS;
+    overrides.fabricSampler = FabricSampling::Best;
+    std::unique_ptr<Scene> reference = LoadQuietly(scene, overrides);
+    RenderStatistics stats = RenderQuietly(*reference);
+    fs::create_directories(cached.parent_path());
+    ImageMetadata metadata;
+    metadata.samplesPerPixel = kReferenceSpp;
+    metadata.renderTimeSeconds = stats.seconds;
+    metadata.scene = ScenePath(scene).string();
+    reference->film.GetImage().Write(cached.string(), metadata);
+}
+
+fs::file_time_type NewestSceneFile(const std::string &scene) {
+    auto newest = fs::file_time_type::min();
+    for (const fs::directory_entry &entry : fs::directory_iterator(ScenePath(scene).parent_path()))
+        if (entry.path().extension() == ".pbrt") newest = std::max(newest, entry.last_write_time());
+    return newest;
+}
+
+// Read once per process; rendered first where the cache is missing or stale.
+const Image &Reference(const std::string &scene) {
+    static std::map<std::string, Image> references;
+    if (auto it = references.find(scene); it != references.end()) return it->second;
+    fs::path cached = ReferencePath(scene);
+    if (!fs::exists(cached) ||
+        fs::last_write_time(cached) < NewestSceneFile(scene))
+        WriteReference(scene, cached);
+    return references.emplace(scene, Image::Read(cached.string())).first->second;
+}
+
+double RelMSE(const Image &image, const Image &reference) {
+    Point2i res = image.Resolution();
+    if (res != reference.Resolution())
+        throw std::runtime_error("the reference's resolution differs from the image's");
+    double sum = 0;
+    for (int y = 0; y < res.y; ++y)
+        for (int x = 0; x < res.x; ++x)
+            for (int c = 0; c < Image::NChannels(); ++c) {
+                double r = reference.GetChannel({x, y}, c);
+                double d = image.GetChannel({x, y}, c) - r;
+                sum += d * d / (r * r + kRelMSEEpsilon);
+            }
+    return sum / (double(res.x) * res.y * Image::NChannels());
+}
+
+void Convergence(benchmark::State &state, const std::string &scene, const std::string &sampler,
+                 const std::string &strategy, int spp) {
+    try {
+        const Image &reference = Reference(scene);
+        RenderOverrides overrides;
+        overrides.spp = spp;
+        overrides.fabricSampler = ParseFabricSampling(sampler);
+        overrides.strategy = ParsePathStrategy(strategy);
+        std::unique_ptr<Scene> rendered = LoadQuietly(scene, overrides);
+        RenderStatistics stats;
+        for (auto _ : state)
+            stats = RenderQuietly(*rendered);
+        double relMSE = RelMSE(rendered->film.GetImage(), reference);
+        state.counters["seconds"] = stats.seconds;
+        state.counters["relMSE"] = relMSE;
+        state.counters["efficiency"] = 1 / (relMSE * stats.seconds);
+        state.counters["spp"] = spp;
+        state.counters["reference_spp"] = kReferenceSpp;
+    } catch (const std::exception &e) {
+        state.SkipWithError(e.what());
+    }
+}
+
+// Scenes outermost, so that each reference is rendered (or read) at its scene's first benchmark.
+bool RegisterConvergence() {
+    for (const char *scene : kScenes)
+        for (const char *sampler : kFabricSamplers)
+            for (const char *strategy : kStrategies)
+                for (int spp : kSweepSpp) {
+                    std::string name = std::string("Convergence/") + scene + "/" + sampler + "/" +
+                                       strategy + "/spp:" + std::to_string(spp);
+                    benchmark::RegisterBenchmark(name.c_str(), Convergence, std::string(scene),
+                                                 std::string(sampler), std::string(strategy), spp)
+                        ->Iterations(1)
+                        ->UseRealTime()
+                        ->Unit(benchmark::kSecond);
+                }
+    return true;
+}
+
+const bool registered = RegisterConvergence();
+
+}  // namespace

@@ -1,0 +1,188 @@
+#!/usr/bin/python3
+"""The noise-to-time study's plots and table, from benchmarks/convergence_bench's JSON output.
+
+    build/release/benchmarks/convergence_bench --benchmark_out=build/bench/convergence.json
+    /usr/bin/python3 scripts/plot_convergence.py build/bench/convergence.json [--out FOLDER]
+
+Writes into FOLDER (default: the JSON's folder)
+  convergence_relmse.png      relMSE against render time, log-log, one panel per scene, one line
+                              per fabric sampler x path strategy;
+  convergence_efficiency.png  efficiency ratios: each fabric sampler against uniform (under MIS),
+                              MIS against BSDF-only and light-only (with the best sampler);
+and prints Markdown tables: the spp each fabric sampler needs for the relMSE of "best", and MIS's
+efficiency relative to BSDF-only and light-only.
+
+The model: an unbiased estimator with independent samples has relMSE = c / spp, so the spp for
+equal error is proportional to c, and efficiency 1 / (relMSE * seconds) = 1 / (c * seconds per
+spp). The reference (MIS, best, reference_spp samples, another seed) adds its own noise
+c_ref / reference_spp to every measurement; the fit removes that floor.
+"""
+import argparse
+import json
+import os
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (after the backend choice)
+
+SAMPLERS = ["uniform", "cosine", "paper", "best"]
+STRATEGIES = ["bsdf", "light", "mis"]
+REFERENCE = ("best", "mis")  # what the reference is rendered with
+
+
+def load(path):
+    """{scene: {(sampler, strategy): [(spp, seconds, relMSE)]}} and {scene: reference spp}."""
+    with open(path) as f:
+        benchmarks = json.load(f)["benchmarks"]
+    series = defaultdict(lambda: defaultdict(list))
+    reference_spp = {}
+    for b in benchmarks:
+        if b.get("error_occurred") or b.get("run_type", "iteration") != "iteration":
+            continue
+        parts = b["name"].split("/")
+        if parts[0] != "Convergence":
+            continue
+        scene, sampler, strategy = parts[1:4]
+        series[scene][(sampler, strategy)].append((int(b["spp"]), b["seconds"], b["relMSE"]))
+        reference_spp[scene] = int(b["reference_spp"])
+    for by_key in series.values():
+        for points in by_key.values():
+            points.sort()
+    return series, reference_spp
+
+
+def reference_floor(points, n_ref):
+    """The reference's own relMSE, c_ref / n_ref, from the series rendered like the reference:
+    there relMSE = c_ref * (1 / spp + 1 / n_ref)."""
+    c_ref = [rel / (1 / spp + 1 / n_ref) for spp, _, rel in points]
+    return sorted(c_ref)[len(c_ref) // 2] / n_ref
+
+
+def fit_c(points, floor):
+    """c of relMSE = floor + c / spp, least squares in relative error so every spp counts alike."""
+    num = sum((rel - floor) / spp / rel**2 for spp, _, rel in points)
+    den = sum(1 / spp**2 / rel**2 for spp, _, rel in points)
+    return max(num / den, 1e-12)
+
+
+def seconds_per_spp(points):
+    """From the largest spp, where fixed costs (tiles, threads) matter least."""
+    spp, seconds, _ = max(points)
+    return seconds / spp
+
+
+def fit(series, reference_spp):
+    """{scene: {(sampler, strategy): (c, efficiency)}}"""
+    fits = {}
+    for scene, by_key in series.items():
+        ref = by_key.get(REFERENCE)
+        floor = reference_floor(ref, reference_spp[scene]) if ref else 0.0
+        fits[scene] = {}
+        for key, points in by_key.items():
+            c = fit_c(points, floor)
+            fits[scene][key] = (c, 1 / (c * seconds_per_spp(points)))
+    return fits
+
+
+def plot_relmse(series, path):
+    scenes = sorted(series)
+    cols = 2
+    rows = (len(scenes) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(6 * cols, 4.5 * rows), squeeze=False)
+    colors = dict(zip(SAMPLERS, ["tab:gray", "tab:blue", "tab:orange", "tab:green"]))
+    styles = dict(zip(STRATEGIES, [":", "--", "-"]))
+    for ax, scene in zip(axes.flat, scenes):
+        for (sampler, strategy), points in sorted(series[scene].items()):
+            ax.loglog([p[1] for p in points], [p[2] for p in points], marker="o", markersize=3,
+                      color=colors.get(sampler), linestyle=styles.get(strategy),
+                      label=f"{sampler} / {strategy}")
+        ax.set_title(scene)
+        ax.set_xlabel("render time [s]")
+        ax.set_ylabel("relMSE")
+        ax.grid(True, which="both", alpha=0.3)
+    for ax in list(axes.flat)[len(scenes):]:
+        ax.axis("off")
+    axes.flat[0].legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+C, EFFICIENCY = 0, 1  # the fields of a fit
+
+
+def ratio(fits, scene, key, baseline, field):
+    """NaN where a filtered run left out either series."""
+    f = fits[scene]
+    if key not in f or baseline not in f:
+        return float("nan")
+    return f[key][field] / f[baseline][field]
+
+
+def cell(value, fmt):
+    return "–" if value != value else format(value, fmt)
+
+
+def plot_efficiency(fits, path):
+    scenes = sorted(fits)
+    panels = [
+        ("fabric sampler vs uniform (MIS)",
+         [(s, (s, "mis"), ("uniform", "mis")) for s in SAMPLERS[1:]]),
+        ("MIS vs one strategy (best sampler)",
+         [(f"mis / {s}", ("best", "mis"), ("best", s)) for s in STRATEGIES[:2]]),
+    ]
+    fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4.5))
+    for ax, (title, bars) in zip(axes, panels):
+        width = 0.8 / len(bars)
+        for i, (label, key, baseline) in enumerate(bars):
+            ratios = [ratio(fits, scene, key, baseline, EFFICIENCY) for scene in scenes]
+            ax.bar([j + (i - (len(bars) - 1) / 2) * width for j in range(len(scenes))], ratios,
+                   width, label=label)
+        ax.axhline(1, color="black", linewidth=0.8)
+        ax.set_yscale("log")
+        ax.set_xticks(range(len(scenes)), scenes, rotation=15)
+        ax.set_ylabel("efficiency ratio")
+        ax.set_title(title)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def print_tables(fits):
+    scenes = sorted(fits)
+    print("spp for the relMSE of `best` (c_sampler / c_best), uniform : cosine : paper : best\n")
+    print("| scene | strategy | " + " | ".join(SAMPLERS) + " |")
+    print("|---|---|" + "---|" * len(SAMPLERS))
+    for scene in scenes:
+        for strategy in STRATEGIES:
+            ratios = [ratio(fits, scene, (s, strategy), ("best", strategy), C) for s in SAMPLERS]
+            print(f"| {scene} | {strategy} | " + " | ".join(cell(r, ".2f") for r in ratios) + " |")
+    print("\nMIS efficiency relative to BSDF-only and light-only (1 / (relMSE x seconds))\n")
+    print("| scene | fabric sampler | mis / bsdf | mis / light |")
+    print("|---|---|---|---|")
+    for scene in scenes:
+        for s in SAMPLERS:
+            ratios = [ratio(fits, scene, (s, "mis"), (s, t), EFFICIENCY) for t in STRATEGIES[:2]]
+            print(f"| {scene} | {s} | " + " | ".join(cell(r, ".3g") for r in ratios) + " |")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("json", help="convergence_bench's --benchmark_out file")
+    parser.add_argument("--out", help="folder for the plots (default: the JSON's folder)")
+    args = parser.parse_args()
+    out = args.out or os.path.dirname(os.path.abspath(args.json))
+    series, reference_spp = load(args.json)
+    if not series:
+        parser.error(f"{args.json}: no Convergence benchmarks without errors")
+    fits = fit(series, reference_spp)
+    plot_relmse(series, os.path.join(out, "convergence_relmse.png"))
+    plot_efficiency(fits, os.path.join(out, "convergence_efficiency.png"))
+    print_tables(fits)
+
+
+if __name__ == "__main__":
+    main()
