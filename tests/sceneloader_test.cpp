@@ -73,7 +73,11 @@ TEST_P(ShippedScene, RendersWithoutNaN) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                          testing::Values("cornell-box.pbrt", "fabric-furnace.pbrt",
-                                         "fabric-cylinder.pbrt", "fabric-showcase.pbrt"));
+                                         "fabric-cylinder.pbrt", "fabric-showcase.pbrt",
+                                         "convergence/cylinder_r0.1.pbrt",
+                                         "convergence/cylinder_r0.3.pbrt",
+                                         "convergence/cylinder_r0.6.pbrt",
+                                         "convergence/cornell_fabric.pbrt"));
 
 TEST(SceneLoader, UnreferencedTexturesAndMaterialsAreNeverLoaded) {
     // The texture and the named material point at files that do not exist; nothing uses them.
