@@ -1,15 +1,11 @@
-// Throughput of FabricBxDF on adversarial inputs, and a count of what it must never return. Inputs are
-// of the kinds tests/fabric_stress_test.cpp checks: grazing (tiny, zero and denormal z) directions,
-// directions equal or within ulps of ±thread, unnormalized, denormal and huge vectors, exponents up to
-// 1e4 and down to the smallest denormal, roughness outside [0, 1], zero and negative colors, threads
-// along the normal, tangent, or of zero length, every sampler, both normalizations, regularized or not.
+// Throughput of FabricBxDF on adversarial inputs, and a count of what it must never return. Inputs
+// come from tests/fabric_adversarial.h, the generator of tests/fabric_stress_test.cpp.
 //
 // They are generated once into a buffer (kConfigurations BxDFs, kCases calls of each kind, each on a
 // random one of them), then at least kCalls calls (f + PDF + Sample_f per case) are timed over it.
 // Counters: "calls/s"; "nonfinite" (NaN or Inf in f, PDF or a sample's f, pdf or wi) and "negative"
 // (a negative f or pdf), both of which must be 0.
-#include "pbrt_ext/bxdfs/fabric.h"
-#include "pbrt_ext/util/rng.h"
+#include "fabric_adversarial.h"
 
 #include <benchmark/benchmark.h>
 
@@ -25,79 +21,11 @@ namespace {
 constexpr int kConfigurations = 4096;
 constexpr int kCases = 1 << 18;
 constexpr int64_t kCalls = 100'000'000;
-constexpr FabricSampling kSamplers[] = {FabricSampling::Uniform, FabricSampling::Cosine,
-                                        FabricSampling::Paper, FabricSampling::TruncatedSinPhi,
-                                        FabricSampling::Best};
-
 struct Case {
     uint32_t bxdf;
     Vector3f wo, wi;
     Float uc;
     Point2f u;
-};
-
-class Generator {
-  public:
-    Float U() { return rng.Uniform<Float>(); }
-    uint32_t Pick(uint32_t n) { return rng.Uniform<uint32_t>() % n; }
-
-    FabricBxDF BxDF() {
-        SampledSpectrum color(U() < 0.1f ? 0.f : U() < 0.1f ? -U() : U());
-        FabricSampling sampling = kSamplers[Pick(5)];
-        FabricNormalization normalization =
-            U() < 0.5f ? FabricNormalization::Paper : FabricNormalization::UnitPeak;
-        Vector3f thread = Thread();
-        FabricBxDF bxdf =
-            U() < 0.5f ? FabricBxDF(color, -2 + 5 * U(), thread, sampling, normalization)
-                       : FabricBxDF(color, FabricExponent{Exponent()}, thread, sampling,
-                                    normalization);
-        if (U() < 0.2f)
-            bxdf.Regularize();
-        return bxdf;
-    }
-
-    // Mostly a random unit vector; often grazing or (nearly) ±thread; often not of unit length.
-    Vector3f Direction(Vector3f thread) {
-        Vector3f w = SampleUniformSphere(Point2f(U(), U()));
-        switch (Pick(8)) {
-        case 0:
-            w.z = std::ldexp(U() - 0.5f, -int(Pick(140)));
-            break;
-        case 1:
-            w = U() < 0.5f ? thread : -thread;
-            break;
-        case 2:
-            w = Normalize(thread + Vector3f(U() - 0.5f, U() - 0.5f, U() - 0.5f) * 1e-6f);
-            break;
-        default:
-            break;
-        }
-        const Float scales[] = {1e-41f, 3e4f, 0.5f + U()};
-        uint32_t s = Pick(10);
-        return s < 3 ? w * scales[s] : w;
-    }
-
-  private:
-    Vector3f Thread() {
-        switch (Pick(6)) {
-        case 0:
-            return Vector3f(0, 0, U() < 0.5f ? 1 : -1);
-        case 1:
-            return Vector3f(1, 0, 1e-30f);
-        case 2:
-            return Vector3f(0, 0, 0);
-        default:
-            return SampleUniformSphere(Point2f(U(), U())) * (0.1f + 10 * U());
-        }
-    }
-
-    Float Exponent() {
-        const Float exponents[] = {1e4f * U(), 1e4f, std::numeric_limits<Float>::denorm_min(),
-                                   40 * U()};
-        return exponents[Pick(4)];
-    }
-
-    RNG rng{20171115};
 };
 
 struct Inputs {
@@ -108,7 +36,7 @@ struct Inputs {
 const Inputs &AdversarialInputs() {
     static const Inputs inputs = [] {
         Inputs in;
-        Generator g;
+        FabricAdversarialInputs g(20171115);
         for (int i = 0; i < kConfigurations; ++i)
             in.bxdfs.push_back(g.BxDF());
         for (int i = 0; i < kCases; ++i) {
