@@ -75,9 +75,9 @@ RGBFilm CreateFilm(const SceneEntity &e, Filter filter, const RenderOverrides &o
     Point2i resolution(p.GetOneInt("xresolution", 1280), p.GetOneInt("yresolution", 720));
     if (resolution.x <= 0 || resolution.y <= 0)
         throw ParseError(e.loc, "film resolution must be positive");
-    std::string filename = overrides.outFile.empty() ? p.GetOneString("filename", "pbrt.exr")
-                                                     : overrides.outFile;
-    p.GetOneString("filename", "");  // the file's name is superseded, not unused
+    std::string filename = p.GetOneString("filename", "pbrt.exr");
+    if (!overrides.outFile.empty())
+        filename = overrides.outFile;
     // pbrt-v4's pixelbounds and cropwindow, the command line winning over the file.
     Bounds2i pixelBounds(Point2i(0, 0), resolution);
     std::vector<Float> crop = p.GetFloatArray("cropwindow");
