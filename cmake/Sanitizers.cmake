@@ -1,4 +1,4 @@
-# Optional runtime checking of the whole build (the `sanitize` preset turns it on).
+# Optional runtime checking of the whole build (the `asan` preset turns it on).
 #
 # Applied globally rather than per target: a sanitizer must see every object that
 # shares memory with the code it checks, test harness included.
