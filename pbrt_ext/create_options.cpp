@@ -3,8 +3,14 @@
 #include "pbrt_ext/create.h"
 
 #include "pbrt_ext/util/error.h"
+#include "pbrt_ext/util/resourcelimits.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <limits>
 
 namespace pbrt {
 
@@ -28,6 +34,69 @@ void WarnIfSet(const SceneEntity &e, const char *name, Float neutral) {
                   name);
 }
 
+// Film limits. Pixel coordinates are 32-bit floats, which past 2^24 cannot tell neighbouring
+// pixels apart. The film counts its pixels in an int (Bounds2i::Area). Per rendered pixel it
+// keeps four double sums, and writing adds the output image's three floats and, for 8-bit
+// formats, three encoded bytes.
+constexpr int kMaxResolution = 1 << 24;
+constexpr uint64_t kFilmBytesPerPixel = 4 * sizeof(double) + 3 * sizeof(float) + 3;
+
+// Where the resolution was written, for errors about the film's size.
+FileLoc ResolutionLoc(const SceneEntity &e) {
+    for (const char *name : {"xresolution", "yresolution"})
+        if (const FileLoc *loc = e.parameters.Loc(name))
+            return *loc;
+    return e.loc;
+}
+
+void CheckResolution(const SceneEntity &e, Point2i resolution) {
+    if (resolution.x <= 0 || resolution.y <= 0)
+        throw ParseError(e.loc, "film resolution must be positive");
+    for (int axis = 0; axis < 2; ++axis) {
+        const char *name = axis == 0 ? "xresolution" : "yresolution";
+        if (resolution[axis] > kMaxResolution)
+            throw ParseError(*e.parameters.Loc(name),
+                             fmt::format("{} {} is too large; expected at most {} (2^24: pixel "
+                                         "coordinates are 32-bit floats)",
+                                         name, resolution[axis], kMaxResolution));
+    }
+}
+
+// Before the film allocates: the rendered pixels (those of pixelBounds inside the image; the
+// film rejects any others) must be countable in an int and fit the memory budget.
+void CheckFilmSize(const SceneEntity &e, Point2i resolution, Bounds2i pixelBounds) {
+    Bounds2i rendered = Intersect(pixelBounds, Bounds2i(Point2i(0, 0), resolution));
+    int64_t width = std::max(0, rendered.pMax.x - rendered.pMin.x),
+            height = std::max(0, rendered.pMax.y - rendered.pMin.y);
+    std::string what = fmt::format("the film's {} x {} pixels", width, height);
+    if (width * height > std::numeric_limits<int>::max())
+        throw ParseError(ResolutionLoc(e), fmt::format("{} are {} in all; expected at most {}",
+                                                       what, width * height,
+                                                       std::numeric_limits<int>::max()));
+    CheckMemory(ResolutionLoc(e), what, uint64_t(width * height) * kFilmBytesPerPixel);
+}
+
+// The sampler constructors reject sample counts they cannot represent; the error goes where the
+// count was set: the command line's --spp, else the first of `counts` the sampler was given.
+template <typename Make>
+Sampler MakeSampler(const SceneEntity &e, const RenderOverrides &overrides,
+                    std::initializer_list<const char *> counts, Make make) {
+    try {
+        return make();
+    } catch (const std::runtime_error &error) {
+        FileLoc loc = e.loc;
+        if (overrides.spp)
+            loc = FileLoc{"--spp", 0, 0};
+        else
+            for (const char *name : counts)
+                if (const FileLoc *written = e.parameters.Loc(name)) {
+                    loc = *written;
+                    break;
+                }
+        throw ParseError(loc, error.what());
+    }
+}
+
 Bounds2f ScreenWindow(const ParameterDictionary &p, const RGBFilm &film) {
     std::vector<Float> sw = p.GetFloatArray("screenwindow");
     Bounds2f window = DefaultScreenWindow(film.FullResolution());
@@ -40,6 +109,32 @@ Bounds2f ScreenWindow(const ParameterDictionary &p, const RGBFilm &film) {
     if (sw.size() != 4)
         throw ParseError(*p.Loc("screenwindow"), "\"screenwindow\" needs four values");
     return Bounds2f(Point2f(sw[0], sw[2]), Point2f(sw[1], sw[3]));
+}
+
+// What chose the film's pixel bounds: the command line's --pixelbounds or --cropwindow, else the
+// file's "pixelbounds" or "cropwindow", else the Film directive.
+FileLoc PixelBoundsLoc(const SceneEntity &e, const RenderOverrides &overrides) {
+    if (overrides.pixelBounds)
+        return FileLoc{"--pixelbounds", 0, 0};
+    if (overrides.cropWindow)
+        return FileLoc{"--cropwindow", 0, 0};
+    for (const char *name : {"pixelbounds", "cropwindow"})
+        if (const FileLoc *loc = e.parameters.Loc(name))
+            return *loc;
+    return e.loc;
+}
+
+// The film's own checks (a crop window that covers no pixel; pixel bounds empty or outside the
+// image) throw std::runtime_error without a location: give them the location of the bounds.
+template <typename Make>
+auto WithPixelBoundsLoc(const SceneEntity &e, const RenderOverrides &overrides, Make make) {
+    try {
+        return make();
+    } catch (const ParseError &) {
+        throw;
+    } catch (const std::runtime_error &error) {
+        throw ParseError(PixelBoundsLoc(e, overrides), error.what());
+    }
 }
 
 }  // namespace
@@ -73,8 +168,7 @@ RGBFilm CreateFilm(const SceneEntity &e, Filter filter, const RenderOverrides &o
     else if (!e.name.empty() && e.name != "rgb")
         throw ParseError(e.loc, "unknown Film \"" + e.name + "\": expected rgb");
     Point2i resolution(p.GetOneInt("xresolution", 1280), p.GetOneInt("yresolution", 720));
-    if (resolution.x <= 0 || resolution.y <= 0)
-        throw ParseError(e.loc, "film resolution must be positive");
+    CheckResolution(e, resolution);
     std::string filename = p.GetOneString("filename", "pbrt.exr");
     if (!overrides.outFile.empty())
         filename = overrides.outFile;
@@ -85,12 +179,16 @@ RGBFilm CreateFilm(const SceneEntity &e, Filter filter, const RenderOverrides &o
     if (overrides.pixelBounds) {
         pixelBounds = *overrides.pixelBounds;
     } else if (overrides.cropWindow) {
-        pixelBounds = PixelBoundsFromCropWindow(resolution, *overrides.cropWindow);
+        pixelBounds = WithPixelBoundsLoc(e, overrides, [&] {
+            return PixelBoundsFromCropWindow(resolution, *overrides.cropWindow);
+        });
     } else if (pb.size() == 4) {
         pixelBounds = Bounds2i(Point2i(pb[0], pb[2]), Point2i(pb[1], pb[3]));
     } else if (crop.size() == 4) {
-        pixelBounds = PixelBoundsFromCropWindow(
-            resolution, Bounds2f(Point2f(crop[0], crop[2]), Point2f(crop[1], crop[3])));
+        pixelBounds = WithPixelBoundsLoc(e, overrides, [&] {
+            return PixelBoundsFromCropWindow(
+                resolution, Bounds2f(Point2f(crop[0], crop[2]), Point2f(crop[1], crop[3])));
+        });
     }
     WarnIfSet(e, "iso", 100);
     WarnIfSet(e, "whitebalance", 0);
@@ -101,7 +199,10 @@ RGBFilm CreateFilm(const SceneEntity &e, Filter filter, const RenderOverrides &o
     Float maxComponent = p.GetOneFloat("maxcomponentvalue", Infinity);
     if (e.name == "rgb" || e.name.empty())
         p.ReportUnused();
-    return RGBFilm(resolution, pixelBounds, std::move(filter), filename, maxComponent);
+    CheckFilmSize(e, resolution, pixelBounds);
+    return WithPixelBoundsLoc(e, overrides, [&] {
+        return RGBFilm(resolution, pixelBounds, std::move(filter), filename, maxComponent);
+    });
 }
 
 Camera CreateCamera(const CameraSceneEntity &e, const RGBFilm &film) {
@@ -135,7 +236,8 @@ Sampler CreateSampler(const SceneEntity &e, Point2i fullResolution,
     if (e.name == "independent") {
         int spp = overrides.spp.value_or(p.GetOneInt("pixelsamples", 16));
         p.ReportUnused();
-        return IndependentSampler(spp, seed);
+        return MakeSampler(e, overrides, {"pixelsamples"},
+                           [&] { return IndependentSampler(spp, seed); });
     }
     if (e.name == "stratified") {
         int xs = p.GetOneInt("xsamples", 4), ys = p.GetOneInt("ysamples", 4);
@@ -149,7 +251,8 @@ Sampler CreateSampler(const SceneEntity &e, Point2i fullResolution,
             xs = n / ys;
         }
         p.ReportUnused();
-        return StratifiedSampler(xs, ys, jitter, seed);
+        return MakeSampler(e, overrides, {"xsamples", "ysamples"},
+                           [&] { return StratifiedSampler(xs, ys, jitter, seed); });
     }
     if (!e.name.empty() && e.name != "zsobol") {
         if (e.name != "halton" && e.name != "sobol" && e.name != "paddedsobol" &&
@@ -174,7 +277,8 @@ Sampler CreateSampler(const SceneEntity &e, Point2i fullResolution,
                                                       "fastowen or owen");
     if (e.name == "zsobol" || e.name.empty())
         p.ReportUnused();
-    return ZSobolSampler(spp, fullResolution, randomize, seed);
+    return MakeSampler(e, overrides, {"pixelsamples"},
+                       [&] { return ZSobolSampler(spp, fullResolution, randomize, seed); });
 }
 
 PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrides &overrides,

@@ -4,8 +4,12 @@
 
 #include "pbrt_ext/util/error.h"
 #include "pbrt_ext/util/ply.h"
+#include "pbrt_ext/util/resourcelimits.h"
+
+#include <fmt/format.h>
 
 #include <filesystem>
+#include <limits>
 
 namespace pbrt {
 
@@ -24,6 +28,26 @@ std::optional<FloatTexture> Alpha(const ParameterDictionary &p, TextureResolver 
         (p.ParameterType("alpha") != "texture" && p.GetOneFloat("alpha", 1) >= 1))
         return {};
     return textures.Float(p, "alpha", 1);
+}
+
+// Meshes count their primitives in an int, and an emitting mesh becomes one area light per
+// primitive, each far larger than the primitive's indices: both are checked before the mesh is
+// made.
+void CheckPrimitives(const ShapeSceneEntity &e, const Appearance &a, size_t primitives) {
+    if (primitives > size_t(std::numeric_limits<int>::max()))
+        throw ParseError(e.loc, fmt::format("{} of {} primitives; expected at most {}", e.name,
+                                            primitives, std::numeric_limits<int>::max()));
+    if (a.emission)
+        CheckMemory(e.loc, fmt::format("the {} area lights of an emitting {}", primitives, e.name),
+                    SaturatingProduct({primitives, sizeof(Light)}));
+}
+
+// A PLY file's vertices, for the first of its two meshes: copied only when the second needs them.
+template <typename T>
+std::vector<T> TakeOrCopy(std::vector<T> &v, bool copy) {
+    if (copy)
+        return v;
+    return std::move(v);
 }
 
 // Mesh construction errors (index ranges, sizes) at the shape's location.
@@ -55,6 +79,7 @@ void AddTriangleMesh(SceneBuilder &builder, const ShapeSceneEntity &e,
     }
     p.GetIntArray("faceIndices");
     p.ReportUnused();
+    CheckPrimitives(e, a, indices.size() / 3);
     auto mesh = AtShape(e, [&] {
         return std::make_shared<TriangleMesh>(MakeTriangleMesh(
             e.worldFromObject, e.reverseOrientation, std::move(indices), std::move(P),
@@ -80,18 +105,24 @@ void AddPlyMesh(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearan
         throw ParseError(*p.Loc("filename"), "cannot open PLY file \"" + filename +
                                                  "\" (looked for " + path + ")");
     PlyMesh ply = ReadPly(path);
+    CheckPrimitives(e, a, ply.triIndices.size() / 3);
+    CheckPrimitives(e, a, ply.quadIndices.size() / 4);
+    bool hasQuads = !ply.quadIndices.empty();
     if (!ply.triIndices.empty()) {
         auto mesh = AtShape(e, [&] {
             return std::make_shared<TriangleMesh>(MakeTriangleMesh(
-                e.worldFromObject, e.reverseOrientation, ply.triIndices, ply.p, ply.n, ply.uv));
+                e.worldFromObject, e.reverseOrientation, std::move(ply.triIndices),
+                TakeOrCopy(ply.p, hasQuads), TakeOrCopy(ply.n, hasQuads),
+                TakeOrCopy(ply.uv, hasQuads)));
         });
         builder.AddTriangleMesh(std::move(mesh), a.material, a.emission, a.alpha);
     }
-    if (!ply.quadIndices.empty()) {
+    if (hasQuads) {
         // ReadPly already lists each quad as a bilinear patch's p00 p10 p01 p11.
         auto mesh = AtShape(e, [&] {
             return std::make_shared<BilinearPatchMesh>(MakeBilinearPatchMesh(
-                e.worldFromObject, e.reverseOrientation, ply.quadIndices, ply.p, ply.n, ply.uv));
+                e.worldFromObject, e.reverseOrientation, std::move(ply.quadIndices),
+                std::move(ply.p), std::move(ply.n), std::move(ply.uv)));
         });
         builder.AddBilinearPatchMesh(std::move(mesh), a.material, a.emission, a.alpha);
     }
@@ -109,6 +140,7 @@ void AddBilinearMesh(SceneBuilder &builder, const ShapeSceneEntity &e,
     std::vector<Normal3f> N = p.GetNormal3fArray("N");
     std::vector<Point2f> uv = p.GetPoint2fArray("uv");
     p.ReportUnused();
+    CheckPrimitives(e, a, indices.size() / 4);
     auto mesh = AtShape(e, [&] {
         return std::make_shared<BilinearPatchMesh>(
             MakeBilinearPatchMesh(e.worldFromObject, e.reverseOrientation, std::move(indices),

@@ -1,6 +1,9 @@
 #include "pbrt_ext/parser.h"
 
 #include "pbrt_ext/paramdict.h"
+#include "pbrt_ext/util/resourcelimits.h"
+
+#include <fmt/format.h>
 
 #include <array>
 #include <charconv>
@@ -121,13 +124,16 @@ Tokenizer Tokenizer::FromFile(const std::string &filename, const FileLoc *includ
             throw ParseError(*includedAt, "cannot open included file \"" + filename + "\": " + why);
         throw ParseError(FileLoc{filename, 0, 0}, "cannot open file: " + why);
     };
-    std::error_code ec;
-    uintmax_t size = std::filesystem::file_size(filename, ec);
-    if (ec)
-        fail(ec.message());
+    std::string why;
+    std::optional<uint64_t> size = RegularFileSize(filename, &why);
+    if (!size)
+        fail(why);
+    CheckMemory(includedAt ? *includedAt : FileLoc{filename, 0, 0},
+                fmt::format("parsing the {}-byte file \"{}\"", *size, filename),
+                SaturatingProduct({*size, kParsedTextBytesPerByte}));
     std::ifstream in(filename, std::ios::binary);
-    std::string text(size, '\0');
-    if (!in.read(text.data(), std::streamsize(size)))
+    std::string text(*size, '\0');
+    if (!in.read(text.data(), std::streamsize(*size)))
         fail("read error");
     return Tokenizer(std::move(text), filename);
 }
@@ -310,9 +316,14 @@ class Parser {
     std::vector<std::unique_ptr<Tokenizer>> files;
     std::optional<Token> pending;
     bool warnedTransformBlock = false, warnedWorldEnd = false;
+    // Every file parsed so far, the main one included.
+    int filesRead = 0;
+    uint64_t bytesRead = 0;
 };
 
 void Parser::Run(Tokenizer file) {
+    filesRead = 1;
+    bytesRead = file.Size();
     files.push_back(std::make_unique<Tokenizer>(std::move(file)));
     while (!files.empty()) {
         if (std::optional<Token> t = NextOptional())
@@ -564,6 +575,12 @@ void Parser::Include(std::string_view directive, const FileLoc &loc) {
     if (name.is_relative())
         name = std::filesystem::path(files.back()->Filename()).parent_path() / name;
     files.push_back(std::make_unique<Tokenizer>(Tokenizer::FromFile(name.string(), &loc)));
+    // Each file fits the budget alone, but the scene keeps what all of them describe, and a few
+    // files that include each other twice describe exponentially much.
+    ++filesRead;
+    bytesRead += files.back()->Size();
+    CheckMemory(loc, fmt::format("parsing {} files of {} bytes in all", filesRead, bytesRead),
+                SaturatingProduct({bytesRead, kParsedTextBytesPerByte}));
 }
 
 }  // namespace

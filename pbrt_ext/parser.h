@@ -130,6 +130,7 @@ class Tokenizer {
     // Where the text ends, for "premature end of file" errors.
     FileLoc EndLoc() const { return {filename, line, column}; }
     const std::string &Filename() const { return filename; }
+    size_t Size() const { return contents.size(); }
 
     // The value of a quoted-string token, quotes removed and escapes decoded.
     static std::string Dequote(const Token &token);

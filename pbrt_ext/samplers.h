@@ -204,11 +204,9 @@ class IndependentSampler {
 // so that dimensions are not correlated with each other.
 class StratifiedSampler {
   public:
-    StratifiedSampler(int xPixelSamples, int yPixelSamples, bool jitter, int seed = 0)
-        : xPixelSamples(xPixelSamples), yPixelSamples(yPixelSamples), seed(seed), jitter(jitter) {
-        if (xPixelSamples < 1 || yPixelSamples < 1)
-            throw std::runtime_error("stratified sampler: xsamples and ysamples must be positive");
-    }
+    // Throws std::runtime_error unless both counts are positive and their product, the samples
+    // per pixel, fits an int.
+    StratifiedSampler(int xPixelSamples, int yPixelSamples, bool jitter, int seed = 0);
 
     static constexpr const char *Name() { return "stratified"; }
     PBRT_CPU_GPU int SamplesPerPixel() const { return xPixelSamples * yPixelSamples; }
@@ -259,9 +257,15 @@ class ZSobolSampler {
   public:
     // A samplesPerPixel that is not a power of two is rounded up (with a warning), as the
     // construction needs whole base-2 digits. Throws std::runtime_error for a non-positive
-    // count or resolution.
+    // count or resolution, a rounded count above 2^30 (SamplesPerPixel is an int), or one whose
+    // sample indices, with the pixels' Morton codes above them, need more than
+    // kMaxSampleIndexBits bits.
     ZSobolSampler(int samplesPerPixel, Point2i fullResolution,
                   RandomizeStrategy randomize = RandomizeStrategy::FastOwen, int seed = 0);
+
+    // mortonIndex holds the sample index below the pixel's Morton code in 64 bits, and
+    // GetSampleIndex shifts it right by as many bits as the two take, which must stay below 64.
+    static constexpr int kMaxSampleIndexBits = 63;
 
     static constexpr const char *Name() { return "zsobol"; }
     PBRT_CPU_GPU int SamplesPerPixel() const { return 1 << log2SamplesPerPixel; }

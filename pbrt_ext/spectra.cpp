@@ -2,6 +2,7 @@
 
 #include "pbrt_ext/paramdict.h"
 #include "pbrt_ext/util/error.h"
+#include "pbrt_ext/util/resourcelimits.h"
 
 #include <algorithm>
 #include <array>
@@ -214,8 +215,11 @@ Tabulated ReadSpectrumFile(const SpectrumParam &param, const std::string &baseDi
     std::filesystem::path path(param.name);
     if (path.is_relative() && !baseDir.empty()) path = std::filesystem::path(baseDir) / path;
     std::string what = "spectrum file \"" + path.string() + "\"";
-    std::ifstream in(path);
-    if (!in) throw ParseError(param.loc, what + " cannot be read, expected a file of (wavelength, value) pairs");
+    std::optional<uint64_t> size = RegularFileSize(path.string(), nullptr);
+    std::ifstream in;
+    if (size) in.open(path);  // never a device or pipe, which may never end
+    if (!in.is_open()) throw ParseError(param.loc, what + " cannot be read, expected a file of (wavelength, value) pairs");
+    CheckMemory(param.loc, "parsing " + what, SaturatingProduct({*size, kParsedTextBytesPerByte}));
     std::vector<double> numbers;
     std::string line;
     for (int lineNo = 1; std::getline(in, line); ++lineNo) {

@@ -6,6 +6,7 @@
 
 #include "pbrt_ext/util/error.h"
 #include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/resourcelimits.h"
 
 #include <fmt/format.h>
 
@@ -325,20 +326,45 @@ void AssignRoles(PlyHeader &header) {
 }
 
 // Rejects element counts the body cannot possibly hold before anything is allocated for them:
-// every property takes at least one byte per instance (a binary value, a list's count, or an
-// ascii token), so the body bounds the total.
+// every property takes at least a binary value (a list, its count) or an ascii token and its
+// separator per instance, so the body bounds the total. Only the file's last ascii token may
+// lack its separator.
 void CheckCountsFit(const PlyHeader &header, size_t bodySize) {
+    bool ascii = header.format == PlyFormat::Ascii;
     uint64_t left = bodySize;
     for (const PlyElement &e : header.elements) {
         uint64_t minSize = 0;
         for (const PlyProperty &p : e.properties)
-            minSize += header.format == PlyFormat::Ascii ? 1 : SizeOf(p.countType.value_or(p.type));
+            minSize += ascii ? 2 : SizeOf(p.countType.value_or(p.type));
         if (minSize == 0) continue;
-        if (uint64_t(e.count) > left / minSize)
+        if (uint64_t(e.count) > (left + (ascii ? 1 : 0)) / minSize)
             throw ParseError(e.loc, fmt::format("element \"{}\" declares {} instances; expected at "
                                                 "most what the remaining {} bytes can hold",
                                                 e.name, e.count, left));
-        left -= uint64_t(e.count) * minSize;
+        left -= std::min(left, uint64_t(e.count) * minSize);
+    }
+}
+
+bool HasRole(const PlyElement &element, Role role) {
+    return std::any_of(element.properties.begin(), element.properties.end(),
+                       [role](const PlyProperty &p) { return p.role == role; });
+}
+
+// The mesh's memory, checked before it is allocated: the body may be a small fraction of it
+// (three one-byte coordinates become a 12-byte point). Per vertex a point and, where the file
+// has them, a normal and uv; per face up to four indices and a face index.
+void CheckMeshMemory(const PlyHeader &header) {
+    for (const PlyElement &e : header.elements) {
+        uint64_t bytesPerInstance = 0;
+        if (e.name == "vertex")
+            bytesPerInstance = sizeof(Point3f) + (HasRole(e, Role::Nx) ? sizeof(Normal3f) : 0) +
+                               (HasRole(e, Role::U) ? sizeof(Point2f) : 0);
+        else if (e.name == "face")
+            bytesPerInstance = 4 * sizeof(int) + (HasRole(e, Role::FaceIndex) ? sizeof(int) : 0);
+        else
+            continue;  // skipped while reading
+        CheckMemory(e.loc, fmt::format("element \"{}\" of {} instances", e.name, e.count),
+                    SaturatingProduct({uint64_t(e.count), bytesPerInstance}));
     }
 }
 
@@ -507,7 +533,7 @@ class BodyReader {
 
     void Read(const PlyHeader &header) {
         // Faces may precede the vertices in the file, so indices are checked against the header.
-        // CheckCountsFit has bounded the counts by the file's size.
+        // CheckCountsFit has bounded the counts by the file's size, CheckMeshMemory the memory.
         for (const PlyElement &element : header.elements) {
             if (element.name == "vertex") AllocateVertices(element);
             if (element.name == "face") mesh->triIndices.reserve(3 * element.count);
@@ -515,9 +541,7 @@ class BodyReader {
         for (const PlyElement &element : header.elements) {
             in.position.element = &element;
             bool isFace = element.name == "face";
-            bool hasFaceIndices =
-                isFace && std::any_of(element.properties.begin(), element.properties.end(),
-                                      [](const PlyProperty &p) { return p.role == Role::FaceIndex; });
+            bool hasFaceIndices = isFace && HasRole(element, Role::FaceIndex);
             if (element.properties.empty()) continue;
             for (int64_t i = 0; i < element.count; ++i) {
                 in.position.instance = i;
@@ -533,14 +557,10 @@ class BodyReader {
 
   private:
     void AllocateVertices(const PlyElement &vertex) {
-        auto has = [&](Role r) {
-            return std::any_of(vertex.properties.begin(), vertex.properties.end(),
-                               [r](const PlyProperty &p) { return p.role == r; });
-        };
         nVertices = vertex.count;
         mesh->p.resize(nVertices);
-        if (has(Role::Nx)) mesh->n.resize(nVertices);
-        if (has(Role::U)) mesh->uv.resize(nVertices);
+        if (HasRole(vertex, Role::Nx)) mesh->n.resize(nVertices);
+        if (HasRole(vertex, Role::U)) mesh->uv.resize(nVertices);
     }
 
     void ReadProperty(const PlyProperty &property, int64_t i) {
@@ -613,6 +633,7 @@ PlyMesh ParsePly(std::string_view contents, const std::string &filename) {
     AssignRoles(header);
     std::string_view body = contents.substr(header.bodyOffset);
     CheckCountsFit(header, body.size());
+    CheckMeshMemory(header);
     PlyMesh mesh;
     if (header.format == PlyFormat::Ascii)
         ReadBody(AsciiCursor(body, header.bodyLine, filename), header, &mesh);
@@ -627,14 +648,16 @@ PlyMesh ParsePly(std::string_view contents, const std::string &filename) {
 
 PlyMesh ReadPly(const std::string &filename) {
     // One read of the whole file: decoding then never waits on the disk.
-    std::ifstream file(filename, std::ios::binary | std::ios::ate);
-    if (!file) throw ParseError(FileLoc{filename, 0, 0}, "cannot open the PLY file; expected a readable file");
-    size_t size = size_t(file.tellg());
-    std::unique_ptr<char[]> contents(new char[size]);  // not zero-filled: read overwrites it
-    file.seekg(0);
-    if (!file.read(contents.get(), std::streamsize(size)))
-        throw ParseError(FileLoc{filename, 0, 0}, "cannot read the PLY file");
-    return ParsePly(std::string_view(contents.get(), size), filename);
+    const FileLoc fileLoc{filename, 0, 0};
+    std::string why;
+    std::optional<uint64_t> size = RegularFileSize(filename, &why);
+    if (!size) throw ParseError(fileLoc, "cannot open the PLY file: " + why);
+    CheckMemory(fileLoc, fmt::format("reading the {}-byte PLY file", *size), *size);
+    std::unique_ptr<char[]> contents(new char[*size]);  // not zero-filled: read overwrites it
+    std::ifstream file(filename, std::ios::binary);
+    if (!file.read(contents.get(), std::streamsize(*size)))
+        throw ParseError(fileLoc, "cannot read the PLY file");
+    return ParsePly(std::string_view(contents.get(), *size), filename);
 }
 
 }  // namespace pbrt
