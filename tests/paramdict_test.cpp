@@ -107,6 +107,12 @@ TEST(ParameterDictionary, WrongCountIsAnErrorAtTheParameter) {
               "scene.pbrt:5:3: error: \"point3 from\" has 6 values: expected 3");
     EXPECT_EQ(ErrorOf([&] { CheckValueCount(Param("rgb", "L", {}, 9)); }),
               "scene.pbrt:9:3: error: \"rgb L\" has 0 values: expected at least one");
+    EXPECT_EQ(ErrorOf([&] { CheckValueCount(Param("normal", "N", {1}, 8)); }),
+              "scene.pbrt:8:3: error: \"normal N\" has 1 value: expected a multiple of 3");
+    // A type the table lacks (the parser rejects those first) needs only some value.
+    EXPECT_EQ(ErrorOf([&] { CheckValueCount(Param("colour", "c", {1, 2}, 7)); }), "");
+    EXPECT_EQ(ErrorOf([&] { CheckValueCount(Param("colour", "c", {}, 7)); }),
+              "scene.pbrt:7:3: error: \"colour c\" has 0 values: expected at least one");
 }
 
 TEST(ParameterDictionary, SpectraStayDescriptions) {

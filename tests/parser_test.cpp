@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -194,6 +195,13 @@ TEST(Tokenizer, SplitsWordsStringsBracketsAndSkipsComments) {
     EXPECT_EQ(t[7].column, 18);
 }
 
+TEST(Tokenizer, WordsEndAtEveryDelimiter) {
+    std::vector<std::string> texts;
+    Tokenizer tokenizer("a\"b\"c[d]e#f\n\fg\vx_1 # a comment that ends the file", "t");
+    Tokens(tokenizer, &texts);
+    EXPECT_EQ(texts, (std::vector<std::string>{"a", "\"b\"", "c", "[", "d", "]", "e", "g", "x_1"}));
+}
+
 TEST(Tokenizer, HandlesCrLfAndTabsAndUtf8ByteOrderMark) {
     std::vector<std::string> texts;
     Tokenizer tokenizer("\xef\xbb\xbfWorldBegin\r\n\tShape", "t");
@@ -221,6 +229,10 @@ TEST(Tokenizer, ReportsUnterminatedStringsAtTheirStart) {
     EXPECT_EQ(ErrorOf("Shape \"sph\\"),
               "<string>:1:7: error: unterminated string: expected a closing '\"' before the end "
               "of the file");
+    // A backslash does not continue a string onto the next line.
+    EXPECT_EQ(ErrorOf("Shape \"sph\\\nere\""),
+              "<string>:1:7: error: unterminated string: expected a closing '\"' before the end "
+              "of the line");
 }
 
 TEST(Tokenizer, ReportsBadEscapeAtTheBackslash) {
@@ -236,10 +248,18 @@ TEST(Tokenizer, ReportsUnexpectedCharacters) {
     EXPECT_EQ(ErrorOf("\n  \x01"), "<string>:2:3: error: unexpected character byte 0x01: "
                                    "expected a directive, a number, a quoted string, \"[\" or "
                                    "\"]\"");
+    const std::string expected =
+        ": expected a directive, a number, a quoted string, \"[\" or \"]\"";
+    EXPECT_EQ(ErrorOf("Shape {"), "<string>:1:7: error: unexpected character '{'" + expected);
+    EXPECT_EQ(ErrorOf("Shape \x7f"), "<string>:1:7: error: unexpected character byte 0x7f" + expected);
+    // UTF-8 outside strings: the first byte of the sequence is named.
+    EXPECT_EQ(ErrorOf("Caf\xc3\xa9"), "<string>:1:4: error: unexpected character byte 0xc3" + expected);
 }
 
 TEST(Tokenizer, RejectsUtf16) {
     EXPECT_EQ(ErrorOf("\xff\xfeW\0"),
+              "<string>:1:1: error: the file is encoded as UTF-16: expected UTF-8 or ASCII text");
+    EXPECT_EQ(ErrorOf(std::string("\xfe\xff\0W", 4)),
               "<string>:1:1: error: the file is encoded as UTF-16: expected UTF-8 or ASCII text");
 }
 
@@ -339,6 +359,11 @@ TEST(Parser, MediumInterfaceWithOneNameLeavesTheNextDirective) {
                                         "WorldBegin @<string>:1:23", "EndOfFiles"}));
 }
 
+TEST(Parser, MediumInterfaceWithOneNameMayEndTheFile) {
+    EXPECT_EQ(Parse("MediumInterface \"fog\""),
+              (std::vector<std::string>{"MediumInterface fog fog @<string>:1:1", "EndOfFiles"}));
+}
+
 TEST(Parser, TransformBeginEndBecomeAttributeBlocksWithOneWarning) {
     Log().quiet = true;
     int before = Log().warnings;
@@ -349,6 +374,15 @@ TEST(Parser, TransformBeginEndBecomeAttributeBlocksWithOneWarning) {
                                         "AttributeEnd @<string>:1:44", "EndOfFiles"}));
     EXPECT_EQ(Log().warnings - before, 2);  // one for TransformBegin/End, one for WorldEnd
     Log().quiet = false;
+}
+
+TEST(Parser, WarningsAreLocated) {
+    testing::internal::CaptureStderr();
+    Parse("TransformBegin TransformEnd\nWorldEnd");
+    EXPECT_EQ(testing::internal::GetCapturedStderr(),
+              "<string>:1:1: warning: TransformBegin/TransformEnd are pbrt-v3 directives: treated "
+              "as AttributeBegin/AttributeEnd\n"
+              "<string>:2:1: warning: WorldEnd is a pbrt-v3 directive: ignored\n");
 }
 
 // Parameters
@@ -381,6 +415,13 @@ TEST(Parser, StoresValuesByTypeAndCanonicalizesAliases) {
     EXPECT_EQ(p[14].bools, (std::vector<uint8_t>{0}));
     EXPECT_EQ(p[1].loc.ToString(), "<string>:2:31");
     EXPECT_EQ(p[14].ToString(), "\"bool o\" [ false ]");
+}
+
+TEST(Parser, BoolsMayBeQuoted) {
+    RecordingTarget target;
+    ParseString(&target, "Shape \"x\" \"bool b\" [ \"true\" false \"false\" true ]");
+    ASSERT_EQ(target.lastParams.size(), 1u);
+    EXPECT_EQ(target.lastParams[0].bools, (std::vector<uint8_t>{1, 0, 0, 1}));
 }
 
 TEST(Parser, ParameterListEndsAtTheNextDirective) {
@@ -430,7 +471,29 @@ TEST(Parser, RejectsNonFiniteAndOutOfRangeNumbers) {
     EXPECT_EQ(ErrorOf("Shape \"s\" \"integer n\" 2147483648"),
               "<string>:1:23: error: integer 2147483648 for \"integer n\" is out of range: "
               "expected a 32-bit integer");
+    EXPECT_EQ(ErrorOf("Shape \"s\" \"integer n\" -2147483649"),
+              "<string>:1:23: error: integer -2147483649 for \"integer n\" is out of range: "
+              "expected a 32-bit integer");
+    // Beyond even 64 bits.
+    EXPECT_EQ(ErrorOf("Shape \"s\" \"integer n\" 99999999999999999999"),
+              "<string>:1:23: error: integer 99999999999999999999 for \"integer n\" is out of "
+              "range: expected a 32-bit integer");
     EXPECT_EQ(ErrorOf("Shape \"s\" \"integer n\" -2147483648"), "");
+}
+
+TEST(Parser, NumbersMayCarryOnePlusSign) {
+    EXPECT_EQ(Parse("Translate +1 -2 +3.5 Shape \"s\" \"float r\" +0.5 \"integer n\" +7"),
+              (std::vector<std::string>{
+                  "Translate 1 -2 3 @<string>:1:1",
+                  "Shape s \"float r\" [ 0.5 ]@<string>:1:32 \"integer n\" [ 7 ]@<string>:1:47 "
+                  "@<string>:1:22",
+                  "EndOfFiles"}));
+    EXPECT_EQ(ErrorOf("Translate +-1 0 0"),
+              "<string>:1:11: error: unexpected +-1: expected a number for Translate");
+    EXPECT_EQ(ErrorOf("Shape \"s\" \"float r\" ++1"),
+              "<string>:1:21: error: unexpected ++1: expected float values for \"float r\"");
+    EXPECT_EQ(ErrorOf("Shape \"s\" \"integer n\" +"),
+              "<string>:1:23: error: unexpected +: expected integer values for \"integer n\"");
 }
 
 TEST(Parser, RejectsValueCountsThatDoNotFitTheType) {
@@ -465,6 +528,7 @@ TEST(Parser, RejectsUnknownDirectivesAndStrayTokens) {
     EXPECT_EQ(ErrorOf("Translate 1 2 3 4"), "<string>:1:17: error: unexpected 4: expected a "
                                             "directive");
     EXPECT_EQ(ErrorOf("]"), "<string>:1:1: error: unexpected ]: expected a directive");
+    EXPECT_EQ(ErrorOf("WorldBegin\n["), "<string>:2:1: error: unexpected [: expected a directive");
 }
 
 TEST(Parser, RejectsMissingOrMistypedDirectiveArguments) {
@@ -532,6 +596,16 @@ TEST(Parser, MissingFilesAreErrorsAtTheirReference) {
               "directory");
     EXPECT_EQ(ErrorOf("Import \"" + kBad + "\""),
               "<string>:1:1: error: cannot open included file \"" + kBad + "\": Is a directory");
+}
+
+// A sysfs file reports a size of 4096 bytes and then reads fewer: the read itself fails.
+TEST(Parser, ShortReadIsAnErrorAtTheReference) {
+    const std::string path = "/sys/devices/system/cpu/online";
+    if (!std::filesystem::is_regular_file(path))
+        GTEST_SKIP() << path << " is not available";
+    EXPECT_EQ(FileErrorOf(path), path + ": error: cannot open file: read error");
+    EXPECT_EQ(ErrorOf("WorldBegin Include \"" + path + "\""),
+              "<string>:1:12: error: cannot open included file \"" + path + "\": read error");
 }
 
 // Each file under tests/data/bad/parse_* and the exact error it must produce.

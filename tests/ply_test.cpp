@@ -11,11 +11,13 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <random>
 #include <sstream>
 #include <type_traits>
+#include <utility>
 
 namespace pbrt {
 namespace {
@@ -73,6 +75,20 @@ TEST(PlyRead, IncompleteNormalsOrUVsAreIgnored) {
     EXPECT_EQ(mesh.p.size(), 3u);
     EXPECT_TRUE(mesh.n.empty());
     EXPECT_TRUE(mesh.uv.empty());
+}
+
+TEST(PlyRead, ElementsWithoutPropertiesAreSkipped) {
+    for (std::string format : {"ascii", "binary_little_endian"}) {
+        SCOPED_TRACE(format);
+        std::string ply = "ply\nformat " + format + " 1.0\nelement vertex 3\nproperty uchar x\n"
+                          "property uchar y\nproperty uchar z\nelement nothing 1000000\n"
+                          "element face 1\nproperty list uchar uchar vertex_indices\nend_header\n";
+        ply += format == "ascii" ? "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"
+                                 : std::string("\0\0\0\1\0\0\0\1\0\3\0\1\2", 13);
+        PlyMesh mesh = ParsePly(ply, "m.ply");
+        EXPECT_EQ(mesh.p, (std::vector<Point3f>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));
+        EXPECT_EQ(mesh.triIndices, (std::vector<int>{0, 1, 2}));
+    }
 }
 
 // ---- Every property type in every format --------------------------------------------------------
@@ -200,6 +216,28 @@ const BadFile kBadFiles[] = {
     {"huge_count", 3, 1, "element \"vertex\" declares 1000000000 instances; expected at most what the remaining 36 bytes can hold"},
     {"binary_index_out_of_range", 0, 0, "face[0] at byte 214: vertex index 7 is out of range; expected 0 to 2"},
     {"binary_negative_count", 0, 0, "face[0] at byte 204: negative list length -3; expected 0 or more"},
+    {"duplicate_format", 3, 1, "duplicate format line; expected exactly one"},
+    {"malformed_format", 2, 1, "malformed line; expected \"format <ascii|binary_little_endian|binary_big_endian> 1.0\""},
+    {"malformed_element", 3, 1, "malformed line; expected \"element <name> <count>\""},
+    {"malformed_list", 8, 1, "malformed line; expected \"property list <count type> <item type> <name>\""},
+    {"word_element_count", 3, 16, "invalid element count \"three\"; expected a non-negative integer"},
+    {"scalar_indices", 8, 1, "property \"vertex_indices\" is not a list of integers; expected e.g. \"property list uchar int vertex_indices\""},
+    {"list_face_indices", 9, 1, "property \"face_indices\" is not an integer scalar; expected e.g. \"property int face_indices\""},
+    {"float_face_indices", 9, 1, "property \"face_indices\" is not an integer scalar; expected e.g. \"property int face_indices\""},
+    {"face_index_out_of_range", 14, 9, "face[0]: face_indices value 4294967295 is out of range; expected 0 to 2147483647"},
+    // Without a vertex element the error is at end_header, where the header ends without one.
+    {"no_vertex_element", 5, 1, "no vertices; expected a non-empty \"vertex\" element"},
+    {"empty_vertex", 3, 1, "no vertices; expected a non-empty \"vertex\" element"},
+    {"empty_face", 7, 1, "no faces; expected a non-empty \"face\" element"},
+    {"too_many_vertices", 3, 1, "too many vertices; expected at most 2147483647"},
+    {"empty", 1, 1, "not a PLY file; expected \"ply\" on the first line"},
+    // The header's last line lacks its newline, and no body follows.
+    {"header_only", 3, 1, "element \"vertex\" declares 3 instances; expected at most what the remaining 0 bytes can hold"},
+    {"uchar_negative", 13, 1, "face[0]: invalid uchar value \"-1\"; expected an integer in [0, 255]"},
+    {"fractional_index", 13, 5, "face[0]: invalid int value \"1.5\"; expected an integer in [-2147483648, 2147483647]"},
+    {"bare_property", 6, 1, "malformed line; expected \"property <type> <name>\""},
+    {"binary_nonfinite", 0, 0, "vertex[1] at byte 185: non-finite value in property \"y\"; expected a finite number"},
+    {"binary_truncated_skip", 0, 0, "face[0] at byte 253: unexpected end of file; expected 1 instances of \"face\" as the header declares"},
 };
 // clang-format on
 
@@ -225,15 +263,36 @@ TEST(PlyErrors, MissingFileIsAParseError) {
         ReadPly(path);
         ADD_FAILURE() << "missing file was accepted";
     } catch (const ParseError &e) {
-        EXPECT_EQ(std::string(e.what()), path + ": error: cannot open the PLY file; expected a readable file");
+        EXPECT_EQ(std::string(e.what()),
+                  path + ": error: cannot open the PLY file: No such file or directory");
     }
 }
 
-TEST(PlyErrors, FaceIndexBeyondIntIsRejected) {
-    std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                      "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
-                      "property uint face_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 4294967295\n";
-    EXPECT_THROW(ParsePly(ply, "big.ply"), ParseError);
+// Only a regular file has a size to read: a directory or a device is refused before any read.
+TEST(PlyErrors, DirectoryAndDeviceAreParseErrors) {
+    const std::pair<std::string, std::string> cases[] = {
+        {kDataDir + "/ply", "Is a directory"},
+        {"/dev/zero", "not a regular file (a device or pipe may never end); expected a file"}};
+    for (const auto &[path, why] : cases) {
+        try {
+            ReadPly(path);
+            ADD_FAILURE() << path << " was accepted";
+        } catch (const ParseError &e) {
+            EXPECT_EQ(std::string(e.what()), path + ": error: cannot open the PLY file: " + why);
+        }
+    }
+}
+
+// A sysfs file reports a size of 4096 bytes and then reads fewer: the read itself fails.
+TEST(PlyErrors, ShortReadIsAParseError) {
+    const std::string path = "/sys/devices/system/cpu/online";
+    if (!std::filesystem::is_regular_file(path)) GTEST_SKIP() << path << " is not available";
+    try {
+        ReadPly(path);
+        ADD_FAILURE() << path << " was accepted";
+    } catch (const ParseError &e) {
+        EXPECT_EQ(std::string(e.what()), path + ": error: cannot read the PLY file");
+    }
 }
 
 // ---- Robustness: corrupted good files never crash -----------------------------------------------

@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace pbrt {
@@ -51,6 +55,13 @@ class WarningCounter {
     int start;
     bool wasQuiet;
 };
+
+// The warnings describing text prints, one per line.
+std::string WarningsOf(const std::string &text) {
+    testing::internal::CaptureStderr();
+    Describe(text);
+    return testing::internal::GetCapturedStderr();
+}
 
 TEST(SceneDescription, DefaultsArePbrtV4s) {
     SceneDescription s = Describe("WorldBegin");
@@ -318,6 +329,25 @@ Option "float displacementedgescale" 0.5)");
     EXPECT_EQ(s.options.at("displacementedgescale").value, "0.5");
 }
 
+TEST(SceneDescription, OptionNamesIgnoreCaseDashesAndUnderscores) {
+    SceneDescription s = Describe("Option \"Pixel-Stats\" true\nTransformTimes 0 1\nWorldBegin");
+    ASSERT_EQ(s.options.count("pixelstats"), 1u);
+    EXPECT_EQ(s.options.at("pixelstats").value, "true");
+}
+
+TEST(SceneDescription, FilesAreDescribedWithTheirPathInEachLocation) {
+    std::filesystem::path file = std::filesystem::temp_directory_path() /
+                                 ("pbrt_ext_scenedescription_test_" + std::to_string(::getpid()) +
+                                  ".pbrt");
+    std::ofstream(file) << "Camera \"orthographic\"\nWorldBegin\n  Shape \"sphere\"\n";
+    SceneDescription s = DescribeSceneFile(file.string());
+    std::filesystem::remove(file);
+    EXPECT_EQ(s.camera.name, "orthographic");
+    EXPECT_EQ(s.camera.loc.ToString(), file.string() + ":1:1");
+    ASSERT_EQ(s.shapes.size(), 1u);
+    EXPECT_EQ(s.shapes[0].loc.ToString(), file.string() + ":3:3");
+}
+
 TEST(SceneDescription, MediaAreIgnoredWithOneWarning) {
     WarningCounter warnings;
     SceneDescription s = Describe(R"(MediumInterface "" ""
@@ -364,6 +394,22 @@ Shape "sphere"
 ObjectEnd)");
     EXPECT_EQ(warnings.Count(), 1);
     EXPECT_TRUE(s.shapes[0].areaLight.has_value());  // kept: the description is the file's
+}
+
+TEST(SceneDescription, WarningsNameWhatIsIgnoredWhere) {
+    EXPECT_EQ(WarningsOf("ColorSpace \"rec2020\"\nWorldBegin"),
+              "s.pbrt:1:1: warning: color space \"rec2020\" is not supported; colors are read as "
+              "srgb\n");
+    EXPECT_EQ(WarningsOf("WorldBegin\n  MediumInterface \"\" \"fog\""),
+              "s.pbrt:2:3: warning: participating media are not supported; MakeNamedMedium, "
+              "MediumInterface and \"medium\" attributes are ignored\n");
+    EXPECT_EQ(WarningsOf("WorldBegin\nActiveTransform EndTime"),
+              "s.pbrt:2:1: warning: motion blur is not supported; only the start-time transform "
+              "is used\n");
+    EXPECT_EQ(WarningsOf("WorldBegin\nAreaLightSource \"diffuse\"\nObjectBegin \"lamp\"\n"
+                         " Shape \"sphere\"\nObjectEnd"),
+              "s.pbrt:4:2: warning: area lights are not supported inside ObjectBegin; instances of "
+              "object \"lamp\" will not emit\n");
 }
 
 // ---- Errors: exact text, located at the offending directive --------------------------------
@@ -440,6 +486,20 @@ TEST(SceneDescriptionErrors, ExactMessages) {
          "s.pbrt:1:1: error: option \"seed\": bad value \"1.5\"; expected an integer"},
         {"Option \"float seed\" 1",
          "s.pbrt:1:1: error: option \"seed\" declared float; expected type integer"},
+        {"Option \"seed\" 99999999999",
+         "s.pbrt:1:1: error: option \"seed\": bad value \"99999999999\"; expected an integer"},
+        {"Option \"displacementedgescale\" inf",
+         "s.pbrt:1:1: error: option \"displacementedgescale\": bad value \"inf\"; expected a "
+         "float"},
+        {"Option \"displacementedgescale\" 0.5x",
+         "s.pbrt:1:1: error: option \"displacementedgescale\": bad value \"0.5x\"; expected a "
+         "float"},
+        {"Option \"displacementedgescale\" \"half\"",
+         "s.pbrt:1:1: error: option \"displacementedgescale\": bad value \"half\"; expected a "
+         "float"},
+        {"WorldBegin\nTransformTimes 0 1",
+         "s.pbrt:2:1: error: \"TransformTimes\" is not allowed after WorldBegin; expected it "
+         "before WorldBegin"},
         {"Film \"rgb\"",
          "s.pbrt: error: end of input before WorldBegin; expected WorldBegin and "
          "the scene"},

@@ -119,6 +119,36 @@ def bad_files():
     yield "binary_index_out_of_range", le + verts + struct.pack("<B3i", 3, 0, 1, 7)
     yield "binary_negative_count", (le.replace(b"uchar int", b"char int") + verts
                                     + struct.pack("<b3i", -3, 0, 1, 2))
+    # The remaining error paths of the reader, one file each (docs/coverage.md).
+    yield "duplicate_format", tri.replace("format ascii 1.0\n", "format ascii 1.0\n" * 2) + body
+    yield "malformed_format", tri.replace("ascii 1.0", "ascii") + body
+    yield "malformed_element", tri.replace("element vertex 3", "element vertex") + body
+    yield "malformed_list", tri.replace("uchar int vertex_indices", "uchar vertex_indices") + body
+    yield "word_element_count", tri.replace("vertex 3", "vertex three") + body
+    yield "scalar_indices", tri.replace("list uchar int vertex_indices", "int vertex_indices") \
+        + "0 0 0\n1 0 0\n0 1 0\n5\n"
+    with_face_index = tri.replace("vertex_indices\n", "vertex_indices\nproperty {} face_indices\n")
+    yield "list_face_indices", with_face_index.format("list uchar int") + body.replace(
+        "0 1 2\n", "0 1 2 1 7\n")
+    yield "float_face_indices", with_face_index.format("float") + body.replace("0 1 2\n", "0 1 2 7\n")
+    yield "face_index_out_of_range", with_face_index.format("uint") + body.replace(
+        "0 1 2\n", "0 1 2 4294967295\n")
+    yield "no_vertex_element", tri.replace(
+        "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n", "") + "3 0 1 2\n"
+    yield "empty_vertex", tri.replace("vertex 3", "vertex 0") + "3 0 1 2\n"
+    yield "empty_face", tri.replace("face 1", "face 0") + "0 0 0\n1 0 0\n0 1 0\n"
+    yield "too_many_vertices", tri.replace("vertex 3", "vertex 2147483648") + body
+    yield "empty", ""
+    yield "header_only", tri.rstrip("\n")
+    yield "uchar_negative", tri + "0 0 0\n1 0 0\n0 1 0\n-1 0 1 2\n"
+    yield "fractional_index", tri + "0 0 0\n1 0 0\n0 1 0\n3 0 1.5 2\n"
+    yield "bare_property", tri.replace("property float z", "property") + body
+    yield "binary_nonfinite", le + struct.pack("<9f", 0, 0, 0, 1, float("nan"), 0, 0, 1, 0) \
+        + struct.pack("<B3i", 3, 0, 1, 2)
+    # A skipped list whose items run past the end of the file.
+    yield "binary_truncated_skip", (le.replace(b"vertex_indices\n",
+                                               b"vertex_indices\nproperty list uchar float weights\n")
+                                    + verts + struct.pack("<B3iBf", 3, 0, 1, 2, 5, 0.5))
 
 
 def main():
