@@ -23,6 +23,8 @@ namespace pbrt {
 namespace {
 
 constexpr int kTileSize = 16;
+// pbrt-v4's cap on a wave: large enough that the waits at the end of each wave cost little.
+constexpr int kMaxWaveSize = 64;
 
 std::vector<Bounds2i> Tiles(const Bounds2i &pixels) {
     std::vector<Bounds2i> tiles;
@@ -45,6 +47,46 @@ struct ThreadCounts {
     int64_t discarded = 0;
 };
 
+bool Cancelled(const RenderOptions &options) {
+    return options.cancel && options.cancel->load(std::memory_order_relaxed);
+}
+
+// Twice the last wave, up to kMaxWaveSize. Under a time limit, also no more samples than the
+// remaining time is predicted to fit at the speed so far (at least one), so that a doubled wave
+// does not overrun the limit.
+int NextWaveSize(int waveSize, int samplesDone, double elapsed, double timeLimit) {
+    int size = std::min(2 * waveSize, kMaxWaveSize);
+    if (timeLimit > 0) {
+        double fits = (timeLimit - elapsed) / (elapsed / samplesDone);
+        size = int(std::clamp(fits, 1.0, double(size)));
+    }
+    return size;
+}
+
+// Samples [first, last) of every pixel of the tile, each pixel's in index order.
+void RenderTile(Scene &scene, const PathIntegrator &integrator, const Bounds2i &tile, int first,
+                int last, ThreadCounts &counts) {
+    // Embree traverses fastest without denormals (its documentation's advice for every rendering
+    // thread); set per tile since TBB owns the threads.
+    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+    Sampler sampler = scene.sampler;  // per tile: samplers carry per-pixel state
+    for (Point2i p : tile)
+        for (int i = first; i < last; ++i) {
+            sampler.StartPixelSample(p, i);
+            CameraSample cs = GetCameraSample(sampler, p, scene.film.GetFilter());
+            pstd::optional<CameraRay> cr = scene.camera.GenerateRay(cs);
+            SampledSpectrum L(0.f);
+            if (cr)
+                L = cr->weight * integrator.Li(cr->ray, sampler, counts.rays);
+            if (!IsValidRadiance(L)) {
+                ++counts.discarded;
+                continue;
+            }
+            scene.film.AddSample(p, L, cs.filterWeight);
+        }
+}
+
 }  // namespace
 
 std::string RenderStatistics::ToString() const {
@@ -63,50 +105,43 @@ RenderStatistics Render(Scene &scene, const RenderOptions &options) {
     if (options.nThreads > 0)
         threads = std::make_unique<tbb::global_control>(
             tbb::global_control::max_allowed_parallelism, options.nThreads);
-    PathIntegrator integrator(scene, scene.integratorOptions);
+    const PathIntegrator integrator(scene, scene.integratorOptions);
     const Bounds2i pixels = scene.film.PixelBounds();
     const std::vector<Bounds2i> tiles = Tiles(pixels);
+    std::vector<int> tileSamples(tiles.size(), 0);  // every pixel of tile t has [0, tileSamples[t])
     const int spp = scene.sampler.SamplesPerPixel();
-    const bool timed = options.timeLimitSeconds > 0;
-    const int samplesPerPass = timed ? 1 : spp;
-    ProgressReporter progress(int64_t(tiles.size()) * (spp / samplesPerPass), "Rendering",
-                              options.quiet);
+    ProgressReporter progress(int64_t(pixels.Area()) * spp, "Rendering", options.quiet);
     tbb::enumerable_thread_specific<ThreadCounts> counts;
 
-    int done = 0;
-    while (done < spp && !(done > 0 && timed && progress.ElapsedSeconds() >= options.timeLimitSeconds)) {
-        const int first = done, last = done + samplesPerPass;
+    int waveStart = 0, waveSize = 1;
+    while (waveStart < spp) {
+        const int waveEnd = std::min(spp, waveStart + waveSize);
+        // The first wave ignores cancellation, so that every pixel has a sample.
+        const bool cancellable = waveStart > 0;
         tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
-            // Embree traverses fastest without denormals (its documentation's advice for every
-            // rendering thread); set per tile since TBB owns the threads.
-            _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-            _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-            Sampler sampler = scene.sampler;  // per tile: samplers carry per-pixel state
-            ThreadCounts &local = counts.local();
-            for (Point2i p : tiles[t])
-                for (int i = first; i < last; ++i) {
-                    sampler.StartPixelSample(p, i);
-                    CameraSample cs = GetCameraSample(sampler, p, scene.film.GetFilter());
-                    pstd::optional<CameraRay> cr = scene.camera.GenerateRay(cs);
-                    SampledSpectrum L(0.f);
-                    if (cr)
-                        L = cr->weight * integrator.Li(cr->ray, sampler, local.rays);
-                    if (!IsValidRadiance(L)) {
-                        ++local.discarded;
-                        continue;
-                    }
-                    scene.film.AddSample(p, L, cs.filterWeight);
-                }
-            progress.Update();
+            if (cancellable && Cancelled(options))
+                return;
+            RenderTile(scene, integrator, tiles[t], waveStart, waveEnd, counts.local());
+            tileSamples[t] = waveEnd;
+            progress.Update(int64_t(tiles[t].Area()) * (waveEnd - waveStart));
         });
-        done = last;
+        waveStart = waveEnd;
+        const double elapsed = progress.ElapsedSeconds();
+        const bool timeUp = options.timeLimitSeconds > 0 && elapsed >= options.timeLimitSeconds;
+        if (Cancelled(options) || timeUp)
+            break;
+        waveSize = NextWaveSize(waveSize, waveStart, elapsed, options.timeLimitSeconds);
     }
     progress.Done();
 
     RenderStatistics stats;
     stats.seconds = progress.ElapsedSeconds();
-    stats.samplesPerPixel = done;
-    stats.cameraSamples = int64_t(pixels.Area()) * done;
+    const auto [fewest, most] = std::minmax_element(tileSamples.begin(), tileSamples.end());
+    stats.samplesPerPixel = *fewest;
+    stats.maxSamplesPerPixel = *most;
+    stats.cancelled = stats.samplesPerPixel < spp && Cancelled(options);
+    for (size_t t = 0; t < tiles.size(); ++t)
+        stats.cameraSamples += int64_t(tiles[t].Area()) * tileSamples[t];
     for (const ThreadCounts &c : counts) {
         stats.closestRays += c.rays.closest;
         stats.shadowRays += c.rays.shadow;

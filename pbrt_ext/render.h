@@ -1,7 +1,8 @@
-// Rendering a scene: tiles over all cores (TBB), a progress bar, final statistics (pbrt-v4's
-// ImageTileIntegrator::Render, reduced to one pass over the pixels with all their samples).
+// Rendering a scene: tiles over all cores (TBB) in waves of samples, a progress bar, final
+// statistics (pbrt-v4's ImageTileIntegrator::Render).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <string>
 
@@ -15,6 +16,11 @@ struct RenderOptions {
     // Stop starting new samples after this many seconds (0: no limit). The image then holds the
     // first k samples of every pixel, for the largest k finished in time (at least 1).
     double timeLimitSeconds = 0;
+    // Read before each tile: once true, tiles not yet started are skipped and Render returns,
+    // every pixel holding at least the first wave (one sample). A host sets it from anywhere, a
+    // signal handler included; the library never installs one (cmd/interrupt.h does, for the
+    // command line). nullptr: never cancelled.
+    const std::atomic<bool> *cancel = nullptr;
 };
 
 struct RenderStatistics {
@@ -22,7 +28,9 @@ struct RenderStatistics {
     int64_t cameraSamples = 0;
     int64_t closestRays = 0, shadowRays = 0;
     int64_t discardedSamples = 0;  // radiance NaN or infinite: counted, never written
-    int samplesPerPixel = 0;       // taken by every pixel (fewer than asked under a time limit)
+    int samplesPerPixel = 0;       // taken by every pixel (fewer than asked when stopped early)
+    int maxSamplesPerPixel = 0;    // taken by some pixels: more only when cancelled mid-wave
+    bool cancelled = false;        // RenderOptions::cancel stopped it before every sample was taken
 
     double CameraSamplesPerSecond() const { return cameraSamples / seconds; }
     double RaysPerSecond() const { return (closestRays + shadowRays) / seconds; }
@@ -30,8 +38,11 @@ struct RenderStatistics {
 };
 
 // Renders every pixel of the scene's film; the film accumulates the result. Samples are taken in
-// passes over the image (one pass of all samples without a time limit, one sample index per pass
-// with one), so that stopping between passes leaves every pixel with the same sample count.
+// waves over the image, as pbrt-v4 does: sample indices [0, 1), [1, 3), [3, 7), ..., each wave
+// twice the last up to 64 samples, so that every pixel soon has samples and a stop between waves
+// (time limit) leaves every pixel with the same count. Each pixel takes its samples in index
+// order, so the image is the same for any thread count, and stopped after k samples it is the
+// image of a k-sample render.
 RenderStatistics Render(Scene &scene, const RenderOptions &options);
 
 }  // namespace pbrt

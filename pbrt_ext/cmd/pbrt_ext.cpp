@@ -2,7 +2,9 @@
 //
 // Usage: pbrt_ext [options] scene.pbrt. Every option is documented by --help with its default; an
 // unknown option is an error. Bad input (scene, meshes, images, options) is reported as
-// "file:line:col: error: ..." with a non-zero exit, and no image is written.
+// "file:line:col: error: ..." with a non-zero exit, and no image is written. Ctrl-C during the
+// render writes the image rendered so far and exits with status 130 (cmd/interrupt.h).
+#include "pbrt_ext/cmd/interrupt.h"
 #include "pbrt_ext/options.h"
 #include "pbrt_ext/render.h"
 #include "pbrt_ext/sceneloader.h"
@@ -81,6 +83,41 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
     return -1;
 }
 
+// Renders the scene and writes its image: all of it, or, when Ctrl-C stopped the render, what
+// was rendered, with kInterruptedExitStatus.
+int RenderAndWriteImage(Scene &scene, const CommandLine &cmd) {
+    const RenderOverrides &o = cmd.overrides;
+    BeginInterruptibleRender();
+    if (!o.quiet) {
+        Vector2i size = scene.film.PixelBounds().Diagonal();
+        std::fprintf(stderr,
+                     "pbrt_ext: rendering %d x %d pixels at %d samples per pixel (Ctrl-C stops "
+                     "and writes the image)\n",
+                     size.x, size.y, scene.sampler.SamplesPerPixel());
+    }
+    RenderStatistics stats =
+        Render(scene, {o.nThreads, o.quiet, o.timeLimitSeconds, &RenderInterrupt()});
+    EndInterruptibleRender();
+
+    ImageMetadata metadata;
+    metadata.samplesPerPixel = stats.samplesPerPixel;
+    metadata.renderTimeSeconds = stats.seconds;
+    metadata.scene = cmd.sceneFile;
+    metadata.interrupted = stats.cancelled;
+    metadata.maxSamplesPerPixel = stats.maxSamplesPerPixel;
+    scene.film.WriteImage(metadata);
+    if (o.stats)
+        std::printf("%s", stats.ToString().c_str());
+    if (!stats.cancelled)
+        return 0;
+    std::string more;
+    if (stats.maxSamplesPerPixel > stats.samplesPerPixel)
+        more = " (" + std::to_string(stats.maxSamplesPerPixel) + " in part of the image)";
+    std::fprintf(stderr, "pbrt_ext: interrupted: %d samples per pixel%s written to %s\n",
+                 stats.samplesPerPixel, more.c_str(), scene.film.GetFilename().c_str());
+    return kInterruptedExitStatus;
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
@@ -88,18 +125,10 @@ int main(int argc, char **argv) {
     if (int exitCode = ParseCommandLine(argc, argv, &cmd); exitCode >= 0)
         return exitCode;
     Log().quiet = cmd.overrides.quiet;
+    InstallInterruptHandler();
     try {
         std::unique_ptr<Scene> scene = LoadScene(cmd.sceneFile, cmd.overrides);
-        RenderStatistics stats = Render(*scene, {cmd.overrides.nThreads, cmd.overrides.quiet,
-                                                 cmd.overrides.timeLimitSeconds});
-        ImageMetadata metadata;
-        metadata.samplesPerPixel = stats.samplesPerPixel;
-        metadata.renderTimeSeconds = stats.seconds;
-        metadata.scene = cmd.sceneFile;
-        scene->film.WriteImage(metadata);
-        if (cmd.overrides.stats)
-            std::printf("%s", stats.ToString().c_str());
-        return 0;
+        return RenderAndWriteImage(*scene, cmd);
     } catch (const std::exception &e) {
         // ParseError's text is already "file:line:col: error: ..."; others say what failed.
         std::fprintf(stderr, "%s\n", e.what());
