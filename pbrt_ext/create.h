@@ -64,6 +64,10 @@ class TextureResolver {
 // and is made by the scene loader's material resolver, not here.
 std::optional<Material> CreateMaterial(const SceneEntity &material, const std::string &type,
                                        const RenderOverrides &overrides, TextureResolver &textures);
+// The "fabric" material with the checks CreateMaterial applies (also how the fabric fuzz target
+// builds exactly the BxDFs a scene file can ask for).
+FabricMaterial CreateFabricMaterial(const ParameterDictionary &parameters, TextureResolver &textures,
+                                    const RenderOverrides &overrides);
 
 // Lights (create_lights.cpp): point, spot, distant, infinite; std::nullopt (with a warning) for
 // types this renderer lacks.

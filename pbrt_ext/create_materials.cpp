@@ -65,8 +65,10 @@ LayerParameters GetLayer(const ParameterDictionary &p, TextureResolver &textures
     return layer;
 }
 
-FabricMaterial CreateFabric(const ParameterDictionary &p, TextureResolver &textures,
-                            const RenderOverrides &overrides) {
+}  // namespace
+
+FabricMaterial CreateFabricMaterial(const ParameterDictionary &p, TextureResolver &textures,
+                                    const RenderOverrides &overrides) {
     FabricMaterial m;
     m.reflectance = textures.Spectrum(p, "reflectance", SampledSpectrum(0.5f),
                                       SpectrumKind::Reflectance);
@@ -91,6 +93,8 @@ FabricMaterial CreateFabric(const ParameterDictionary &p, TextureResolver &textu
                                                       normalization + "\": expected paper or unitpeak");
     return m;
 }
+
+namespace {
 
 // pbrt-v4's "texture displacement" (bump map; a float texture or value) and "string normalmap"
 // (an image read with linear encoding, relative to the scene's folder).
@@ -168,7 +172,7 @@ std::optional<Material> CreateMaterial(const SceneEntity &e, const std::string &
         m.layer = GetLayer(p, textures);
         material = m;
     } else if (type == "fabric") {
-        material = CreateFabric(p, textures, overrides);
+        material = CreateFabricMaterial(p, textures, overrides);
     } else if (type == "interface") {
         p.ReportUnused();
         return std::nullopt;

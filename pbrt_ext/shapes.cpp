@@ -847,7 +847,9 @@ std::array<Point3f, 4> PatchCorners(const BilinearPatchMesh *mesh, int patchInde
 
 BilinearPatch::BilinearPatch(const BilinearPatchMesh *mesh, int patchIndex)
     : mesh(mesh), patchIndex(patchIndex) {
-    auto [p00, p10, p01, p11] = Corners();
+    // Named copies, not a structured binding: clang 14 cannot capture bindings in the lambda below.
+    std::array<Point3f, 4> corners = Corners();
+    Point3f p00 = corners[0], p10 = corners[1], p01 = corners[2], p11 = corners[3];
     isRectangle = IsRectangle(p00, p10, p01, p11);
     if (isRectangle) {
         area = Distance(p00, p01) * Distance(p00, p10);

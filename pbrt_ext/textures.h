@@ -155,9 +155,8 @@ class FloatTexture {
         requires std::is_constructible_v<Variant, T>
     FloatTexture(T texture) : texture(std::move(texture)) {}
 
-    Float Evaluate(const TextureEvalContext &ctx) const {
-        return std::visit([&](const auto &t) { return t.Evaluate(ctx); }, texture);
-    }
+    // Defined below the combining textures: clang requires their deduced return types first.
+    Float Evaluate(const TextureEvalContext &ctx) const;
 
   private:
     Variant texture;
@@ -173,9 +172,7 @@ class SpectrumTexture {
         requires std::is_constructible_v<Variant, T>
     SpectrumTexture(T texture) : texture(std::move(texture)) {}
 
-    SampledSpectrum Evaluate(const TextureEvalContext &ctx) const {
-        return std::visit([&](const auto &t) { return t.Evaluate(ctx); }, texture);
-    }
+    SampledSpectrum Evaluate(const TextureEvalContext &ctx) const;
 
   private:
     Variant texture;
@@ -230,5 +227,13 @@ auto CheckerboardTexture<Tex>::Evaluate(const TextureEvalContext &ctx) const {
 }
 
 }  // namespace detail
+
+inline Float FloatTexture::Evaluate(const TextureEvalContext &ctx) const {
+    return std::visit([&](const auto &t) { return t.Evaluate(ctx); }, texture);
+}
+
+inline SampledSpectrum SpectrumTexture::Evaluate(const TextureEvalContext &ctx) const {
+    return std::visit([&](const auto &t) { return t.Evaluate(ctx); }, texture);
+}
 
 }  // namespace pbrt

@@ -1,5 +1,9 @@
 #include "pbrt_ext/util/image.h"
 
+#include "pbrt_ext/util/atomicfile.h"
+#include "pbrt_ext/util/imageheaders.h"
+#include "pbrt_ext/util/resourcelimits.h"
+
 #include <ImfChannelList.h>
 #include <ImfDoubleAttribute.h>
 #include <ImfFrameBuffer.h>
@@ -10,17 +14,13 @@
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
-#include <system_error>
 
 namespace pbrt {
 
@@ -34,32 +34,6 @@ std::string LowercaseExtension(const std::string &path) {
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     return ext;
-}
-
-// A name beside the target, unique per process and call, so that concurrent writers (and a
-// crash mid-write) never touch the target itself.
-std::string TemporaryPathFor(const std::string &path) {
-    static std::atomic<unsigned> counter{0};
-    std::filesystem::path p(path);
-    std::string name = fmt::format(".{}.tmp-{}-{}", p.filename().string(), ::getpid(), counter++);
-    return (p.parent_path() / name).string();
-}
-
-// Runs write(tmpPath), then renames the result onto path; on any failure the temporary file
-// is removed and the target is left as it was.
-template <typename WriteFn>
-void WriteAtomically(const std::string &path, WriteFn write) {
-    std::string tmpPath = TemporaryPathFor(path);
-    try {
-        write(tmpPath);
-        std::error_code ec;
-        std::filesystem::rename(tmpPath, path, ec);
-        if (ec) ThrowFileError(path, "cannot rename the temporary file into place: " + ec.message());
-    } catch (...) {
-        std::error_code ignored;
-        std::filesystem::remove(tmpPath, ignored);
-        throw;
-    }
 }
 
 bool IsFloatFormat(OIIO::TypeDesc format) {
@@ -79,6 +53,26 @@ std::array<int, 3> RGBChannelIndices(const OIIO::ImageSpec &spec) {
     // Gray, or gray and alpha.
     if (spec.nchannels < 3) return {0, 0, 0};
     return {0, 1, 2};
+}
+
+// What OpenImageIO 2.4's read_image allocates besides our buffer when it converts to float
+// (imageinput.cpp): for a scanline file, whole native scanlines, about 64 MiB of them but at least
+// its "read_chunk" (256) and a multiple of the rows per strip (64 unless a TIFF says), however few
+// the image has; for a tiled file, a row of native tiles. The header decides both: a wide image of
+// four rows made it allocate 3 GiB (found by the image fuzz target, docs/fuzzing.md).
+uint64_t DecoderBufferBytes(const OIIO::ImageSpec &spec) {
+    uint64_t scanline = std::max<uint64_t>(spec.scanline_bytes(true), 1);
+    if (spec.tile_width > 0) {
+        uint64_t tilesAcross = (uint64_t(spec.width) + spec.tile_width - 1) / spec.tile_width;
+        return SaturatingProduct({tilesAcross, spec.tile_bytes(true)});
+    }
+    int readChunk = 256;
+    OIIO::getattribute("read_chunk", readChunk);
+    uint64_t rows = std::max<uint64_t>((uint64_t(1) << 26) / scanline, std::max(readChunk, 1));
+    int rowsPerStrip = spec.get_int_attribute("tiff:RowsPerStrip", 64);
+    if (rowsPerStrip > 0)
+        rows = (rows + rowsPerStrip - 1) / rowsPerStrip * rowsPerStrip;
+    return SaturatingProduct({rows, scanline});
 }
 
 }  // namespace
@@ -144,11 +138,26 @@ std::string ColorEncoding::ToString() const {
 }
 
 Image Image::Read(const std::string &path, ColorEncoding encoding) {
+    CheckDeclaredSizes(path);  // before a decoder allocates what a corrupt header declares
     std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
     if (!in) ThrowFileError(path, "cannot read the image: " + OIIO::geterror());
     const OIIO::ImageSpec &spec = in->spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
         ThrowFileError(path, "the image has no pixels");
+    // read_image would fill every slice of a volume into a buffer sized for one.
+    if (spec.depth > 1)
+        ThrowFileError(path, fmt::format("the image is a volume of {} slices; expected a 2D image",
+                                         spec.depth));
+    // The header alone decides the size: the file's channels as floats while decoding, then
+    // the image's own three.
+    CheckMemory(FileLoc{path, 0, 0},
+                fmt::format("the {} x {} image of {} channel{}", spec.width, spec.height,
+                            spec.nchannels, spec.nchannels == 1 ? "" : "s"),
+                SaturatingProduct({uint64_t(spec.width), uint64_t(spec.height),
+                                   uint64_t(spec.nchannels) + NChannels(), sizeof(float)}));
+    CheckMemory(FileLoc{path, 0, 0},
+                fmt::format("decoding the {} x {} image", spec.width, spec.height),
+                DecoderBufferBytes(spec));
 
     std::vector<float> raw(size_t(spec.width) * spec.height * spec.nchannels);
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, raw.data()))
@@ -171,9 +180,9 @@ Image Image::Read(const std::string &path, ColorEncoding encoding) {
 void Image::Write(const std::string &path, const ImageMetadata &metadata) const {
     if (Empty()) ThrowFileError(path, "cannot write an image without pixels");
     if (LowercaseExtension(path) == ".exr")
-        WriteAtomically(path, [&](const std::string &tmp) { WriteEXR(path, tmp, metadata); });
+        WriteFileAtomically(path, [&](const std::string &tmp) { WriteEXR(path, tmp, metadata); });
     else
-        WriteAtomically(path, [&](const std::string &tmp) { WriteOIIO(path, tmp); });
+        WriteFileAtomically(path, [&](const std::string &tmp) { WriteOIIO(path, tmp); });
 }
 
 void Image::WriteEXR(const std::string &path, const std::string &tmpPath,
@@ -191,6 +200,10 @@ void Image::WriteEXR(const std::string &path, const std::string &tmpPath,
                        Imf::ZIP_COMPRESSION);
     header.insert("samplesPerPixel", Imf::IntAttribute(metadata.samplesPerPixel));
     header.insert("renderTimeSeconds", Imf::DoubleAttribute(metadata.renderTimeSeconds));
+    if (metadata.interrupted) {
+        header.insert("interrupted", Imf::IntAttribute(1));
+        header.insert("maxSamplesPerPixel", Imf::IntAttribute(metadata.maxSamplesPerPixel));
+    }
     if (!metadata.scene.empty()) header.insert("scene", Imf::StringAttribute(metadata.scene));
     for (const auto &[key, value] : metadata.extra) {
         // Overwriting a standard attribute (e.g. "channels") would corrupt the file.

@@ -6,8 +6,8 @@
 // sRGB unless the caller says otherwise; float formats such as EXR, PFM, HDR are taken as
 // linear). Writing EXR goes through OpenEXR (32-bit float RGB
 // with the metadata as header attributes); any other extension goes through OpenImageIO as 8-bit
-// sRGB. Files are written to a temporary name beside the target and renamed, so a failed write
-// never leaves a partial file. File errors throw std::runtime_error("<path>: error: <what>").
+// sRGB. Files are written atomically (util/atomicfile.h): a failed or interrupted write never
+// leaves a partial file. File errors throw std::runtime_error("<path>: error: <what>").
 //
 // This is a host type (the pixels live in a std::vector), like pbrt-v4's Image outside its GPU
 // build.
@@ -115,8 +115,12 @@ PBRT_CPU_GPU inline bool RemapPixelCoords(Point2i *p, Point2i resolution, WrapMo
 // and pixelBounds, when set, become the EXR display and data windows (a crop window renders a
 // sub-rectangle of the full image).
 struct ImageMetadata {
-    int samplesPerPixel = 0;
+    int samplesPerPixel = 0;  // taken by every pixel
     double renderTimeSeconds = 0;
+    // A render stopped early: some pixels hold up to maxSamplesPerPixel samples. Both become int
+    // attributes ("interrupted" 1, "maxSamplesPerPixel") only then.
+    bool interrupted = false;
+    int maxSamplesPerPixel = 0;
     std::string scene;
     std::map<std::string, std::string> extra;
     std::optional<Point2i> fullResolution;

@@ -6,7 +6,7 @@
 namespace pbrt {
 
 ProgressReporter::ProgressReporter(int64_t totalWork, std::string title, bool quiet)
-    : totalWork(std::max<int64_t>(1, totalWork)), title(std::move(title)), quiet(quiet) {
+    : totalWork(std::max<int64_t>(1, totalWork)), title(std::move(title)) {
     if (quiet)
         return;
     drawer = std::thread([this] {

@@ -29,7 +29,6 @@ class ProgressReporter {
 
     const int64_t totalWork;
     const std::string title;
-    const bool quiet;
     const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
     std::atomic<int64_t> workDone{0};
     std::mutex mutex;

@@ -20,3 +20,14 @@ install_missing_packages() {
   "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive \
     apt-get install -y -q --no-install-recommends "${missing[@]}"
 }
+
+# Everything the project builds with (scripts/setup; scripts/fuzz adds clang to it).
+project_packages=(
+  # toolchain, tests, benchmarks, plots
+  build-essential cmake ninja-build
+  libgtest-dev libgmock-dev libbenchmark-dev
+  python3 python3-numpy python3-matplotlib
+  # the renderer: ray tracing, images, threads, command line, scene data, formatting
+  libembree-dev libopenexr-dev libopenimageio-dev openimageio-tools libtbb-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev
+)

@@ -1,0 +1,41 @@
+// Fuzz harnesses: one function per input surface of the renderer, fed arbitrary bytes.
+//
+// Each harness turns the bytes into one call of the code under test and accepts the outcomes that
+// code promises for bad input (a ParseError or std::runtime_error with a message). Anything else is
+// a finding: a crash, a sanitizer report, another exception type (it escapes and terminates), a
+// hang, or a violated invariant, which a harness reports on stderr before std::abort(). The
+// libFuzzer entry points (<target>_fuzzer.cpp) and the regression test
+// (tests/fuzz_regression_test.cpp) call the same functions, so a committed input replays exactly
+// what the fuzzer ran. Harnesses are deterministic and keep no state between inputs beyond their
+// scratch directory (fuzz/scratch.h).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+namespace pbrt::fuzz {
+
+// Scene text through the tokenizer, the parser and BasicSceneBuilder (DescribeSceneString).
+void FuzzParser(std::span<const uint8_t> data);
+// A PLY file in memory (ParsePly).
+void FuzzPly(std::span<const uint8_t> data);
+// An image file through Image::Read: the first byte picks the file extension, the rest is the file.
+void FuzzImage(std::span<const uint8_t> data);
+// FabricBxDF built from fabric-material parameters, evaluated and sampled at one pair of
+// directions, with its invariants asserted (layout in fabric_target.cpp).
+void FuzzFabric(std::span<const uint8_t> data);
+// A scene file through LoadScene: the parser and everything the scene loader creates.
+void FuzzScene(std::span<const uint8_t> data);
+
+struct FuzzTarget {
+    std::string_view name;  // as scripts/fuzz and tests/data/fuzz/<name>/ call it
+    void (*run)(std::span<const uint8_t>);
+};
+
+// Every target, in the order scripts/fuzz --list prints them.
+inline constexpr FuzzTarget kFuzzTargets[] = {
+    {"parser", FuzzParser}, {"ply", FuzzPly},     {"image", FuzzImage},
+    {"fabric", FuzzFabric}, {"scene", FuzzScene}};
+
+}  // namespace pbrt::fuzz
