@@ -5,6 +5,10 @@
 # cost one test at most. The compile runs at build time through RunNvcc.cmake, which
 # records its verdict in a log instead of failing; the test reads the verdict.
 
+# Off in the sanitizer preset: device code is the same whatever the host build, so one preset
+# checking it is enough, and nvcc is the slowest step of a build.
+option(PBRT_EXT_CUDA_COMPILE_CHECKS "Compile-check the GPU-clean headers with nvcc (when found)" ON)
+
 find_program(PBRT_EXT_NVCC nvcc
              HINTS ENV CUDA_PATH ENV CUDA_HOME
              PATH_SUFFIXES bin
@@ -20,6 +24,9 @@ endif()
 # Adds a target and a ctest, both called <name>. The test passes when nvcc compiled
 # <source.cu>, fails with nvcc's diagnostics when it did not, and is skipped without nvcc.
 function(pbrt_ext_add_cuda_compile_check name source)
+  if(NOT PBRT_EXT_CUDA_COMPILE_CHECKS)
+    return()
+  endif()
   if(NOT PBRT_EXT_NVCC)
     add_test(NAME ${name}
              COMMAND ${CMAKE_COMMAND} -E echo "nvcc not found: CUDA compile check skipped")
