@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -661,7 +660,8 @@ TEST(Parser, ArgumentsDoNotContinueIntoTheIncludingFile) {
 
 // Big meshes are most of a large scene's bytes; they must parse at memory speed, not per-token
 // allocation speed.
-TEST(Parser, LargeParameterListsParseQuickly) {
+// A mesh-sized list keeps every value (its speed is benchmarks/parser_bench.cpp's).
+TEST(Parser, LargeParameterListsKeepEveryValue) {
     constexpr int kPoints = 300000;
     std::string text = "Shape \"trianglemesh\" \"point3 P\" [";
     text.reserve(kPoints * 3 * 10);
@@ -669,14 +669,15 @@ TEST(Parser, LargeParameterListsParseQuickly) {
         text += " 0.125 -1.5 " + std::to_string(i);
     text += " ]\n";
     RecordingTarget target;
-    auto start = std::chrono::steady_clock::now();
     ParseString(&target, std::move(text));
-    double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ASSERT_EQ(target.lastParams.size(), 1u);
-    EXPECT_EQ(target.lastParams[0].numbers.size(), size_t(3 * kPoints));
-    EXPECT_EQ(target.lastParams[0].numbers.back(), kPoints - 1);
-    EXPECT_LT(seconds, 2.0);  // ~0.1 s in release builds; generous for debug and sanitizers
+    const std::vector<double> &numbers = target.lastParams[0].numbers;
+    ASSERT_EQ(numbers.size(), size_t(3 * kPoints));
+    for (int i = 0; i < kPoints; ++i) {
+        ASSERT_EQ(numbers[3 * i], 0.125);
+        ASSERT_EQ(numbers[3 * i + 1], -1.5);
+        ASSERT_EQ(numbers[3 * i + 2], i);
+    }
 }
 
 }  // namespace
