@@ -4,7 +4,7 @@
 // code promises for bad input (a ParseError or std::runtime_error with a message). Anything else is
 // a finding: a crash, a sanitizer report, another exception type (it escapes and terminates), a
 // hang, or a violated invariant, which a harness reports on stderr before std::abort(). The
-// libFuzzer entry points (<target>_fuzzer.cpp) and the regression test
+// libFuzzer entry points (fuzzer_main.cpp, once per target) and the regression test
 // (tests/fuzz_regression_test.cpp) call the same functions, so a committed input replays exactly
 // what the fuzzer ran. Harnesses are deterministic and keep no state between inputs beyond their
 // scratch directory (fuzz/scratch.h).

@@ -1,7 +1,0 @@
-// libFuzzer entry point of the fabric target (fuzz_targets.h).
-#include "fuzz/fuzz_targets.h"
-
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-    pbrt::fuzz::FuzzFabric({data, size});
-    return 0;
-}
