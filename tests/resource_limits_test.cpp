@@ -22,6 +22,7 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 
 using namespace pbrt;
@@ -96,17 +97,33 @@ std::string ErrorOf(F f) {
 
 // ---- The budget ---------------------------------------------------------------------------------
 
-TEST_F(ResourceLimits, DefaultBudgetIsThePhysicalMemory) {
+// The physical memory, or the cgroup's limit where a container sets a lower one.
+TEST_F(ResourceLimits, DefaultBudgetIsThePhysicalMemoryOrTheCgroupLimit) {
     SetMemoryBudget(0);
     uint64_t physical = uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
-    EXPECT_EQ(MemoryBudget(), physical);
-    EXPECT_NO_THROW(CheckMemory(FileLoc{"f", 1, 2}, "a request", physical));
-    std::string error = ErrorOf([&] { CheckMemory(FileLoc{"f", 1, 2}, "a request", physical + 1); });
+    std::optional<uint64_t> cgroup = CgroupMemoryLimit();
+    bool limited = cgroup && *cgroup < physical;
+    uint64_t expected = limited ? *cgroup : physical;
+    EXPECT_EQ(MemoryBudget(), expected);
+    EXPECT_NO_THROW(CheckMemory(FileLoc{"f", 1, 2}, "a request", expected));
+    std::string error = ErrorOf([&] { CheckMemory(FileLoc{"f", 1, 2}, "a request", expected + 1); });
     EXPECT_TRUE(error.starts_with(fmt::format("f:1:2: error: a request would take {} bytes (",
-                                              physical + 1))) << error;
-    EXPECT_NE(error.find(fmt::format("; expected at most the memory budget of {} bytes (", physical)),
+                                              expected + 1))) << error;
+    EXPECT_NE(error.find(fmt::format("; expected at most the memory budget of {} bytes (", expected)),
               std::string::npos) << error;
-    EXPECT_TRUE(error.ends_with(", this machine's physical memory)")) << error;
+    EXPECT_TRUE(error.ends_with(limited ? ", the memory limit of this process's cgroup)"
+                                        : ", this machine's physical memory)")) << error;
+}
+
+// cgroup v2 writes "max" for no limit; v1 writes a byte count (a huge one for no limit).
+TEST_F(ResourceLimits, CgroupMemoryLimitFilesParse) {
+    EXPECT_EQ(ParseCgroupMemoryLimit("1073741824\n"), std::optional<uint64_t>(1073741824));
+    EXPECT_EQ(ParseCgroupMemoryLimit("9223372036854771712"),
+              std::optional<uint64_t>(9223372036854771712ull));
+    EXPECT_EQ(ParseCgroupMemoryLimit("max\n"), std::nullopt);
+    EXPECT_EQ(ParseCgroupMemoryLimit(""), std::nullopt);
+    EXPECT_EQ(ParseCgroupMemoryLimit("12 GiB"), std::nullopt);
+    EXPECT_EQ(ParseCgroupMemoryLimit("-1"), std::nullopt);
 }
 
 TEST_F(ResourceLimits, OverflowingProductsExceedEveryBudget) {

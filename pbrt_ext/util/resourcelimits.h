@@ -4,7 +4,8 @@
 // kill. Linux overcommits memory, so such a request would not fail when made but be killed later,
 // while its pages are touched.
 //
-// The budget is the machine's physical memory: one request larger than that cannot succeed.
+// The budget is the machine's physical memory, or the memory limit of the process's cgroup (a
+// container's) where that is lower: one request larger than that cannot succeed.
 // Requests are checked one at a time, so several that each fit may still exhaust memory
 // together; the guard stops absurd requests, it does not account for the whole render.
 #pragma once
@@ -24,11 +25,20 @@ namespace pbrt {
 // during parsing: up to 1 + 4 + 2 bytes of memory per byte of the file, rounded up.
 constexpr uint64_t kParsedTextBytesPerByte = 8;
 
-// The bytes one request may take: the physical memory, unless SetMemoryBudget chose a budget.
+// The bytes one request may take: the physical memory or the cgroup's limit, whichever is lower,
+// unless SetMemoryBudget chose a budget.
 uint64_t MemoryBudget();
 // For tests, and for applications that embed the renderer with less memory to give it;
-// 0 restores the physical memory.
+// 0 restores the default.
 void SetMemoryBudget(uint64_t bytes);
+
+// The memory limit of this process's cgroup (cgroup v2's memory.max, or v1's
+// memory.limit_in_bytes, of the group /proc/self/cgroup names); std::nullopt where none is set
+// or none can be read.
+std::optional<uint64_t> CgroupMemoryLimit();
+// The contents of such a file: a byte count, or std::nullopt for "max" (no limit) or anything
+// that is not a number.
+std::optional<uint64_t> ParseCgroupMemoryLimit(std::string_view contents);
 
 // The product, or UINT64_MAX (more than any budget) where it would overflow.
 uint64_t SaturatingProduct(std::initializer_list<uint64_t> factors);
