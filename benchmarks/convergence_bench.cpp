@@ -11,8 +11,8 @@
 // (--benchmark_format=json or --benchmark_out=<file>) into plots and a table.
 //
 // A reference is rendered once at kReferenceSpp with MIS and the "best" fabric sampler and cached
-// as <PBRT_EXT_BENCH_DIR, default build/bench>/reference/<scene>.exr (relative to the working
-// folder); it is rendered again when missing or older than a scene file of its folder (the
+// as <PBRT_EXT_BENCH_DIR, default build/bench>/reference/<scene>.spectral.exr (relative to the
+// working folder); it is rendered again when missing or older than a scene file of its folder (the
 // cylinders share an include). It uses another seed than the sweep, so that no sweep image shares
 // its samples with the reference.
 #include "pbrt_ext/render.h"
@@ -55,7 +55,8 @@ fs::path ScenePath(const std::string &scene) {
 
 fs::path ReferencePath(const std::string &scene) {
     const char *dir = std::getenv("PBRT_EXT_BENCH_DIR");
-    return fs::path(dir ? dir : "build/bench") / "reference" / (scene + ".exr");
+    // ".spectral": a reference cached by a build that rendered RGB, not spectra, is not reused.
+    return fs::path(dir ? dir : "build/bench") / "reference" / (scene + ".spectral.exr");
 }
 
 std::unique_ptr<Scene> LoadQuietly(const std::string &scene, RenderOverrides overrides) {

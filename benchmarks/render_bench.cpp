@@ -77,11 +77,11 @@ void RenderSceneFile(benchmark::State &state, const std::string &name, int spp) 
 }
 
 void CornellDiffuse(benchmark::State &state) {
-    RenderCornellBox(state, DiffuseMaterial{SampledSpectrum(0.73f)}, "cornell_diffuse");
+    RenderCornellBox(state, DiffuseMaterial{Spectrum(0.73f)}, "cornell_diffuse");
 }
 void CornellFabric(benchmark::State &state) {
     FabricMaterial fabric;
-    fabric.reflectance = SampledSpectrum(0.73f);
+    fabric.reflectance = Spectrum(0.73f);
     fabric.roughness = 0.3f;
     RenderCornellBox(state, fabric, "cornell_fabric");
 }

@@ -120,7 +120,9 @@ std::optional<BxDF> MakeFabricBxDF(const FabricParameters &p) {
     try {
         FabricMaterial material =
             CreateFabricMaterial(ParameterDictionary(std::move(params)), textures, {});
-        BxDF bxdf = material.GetBxDF(TextureEvalContext());
+        // Any visible wavelengths: the fabric's reflectances are the rgb's spectra there.
+        SampledWavelengths lambda = SampledWavelengths::SampleVisible(0.5f);
+        BxDF bxdf = material.GetBxDF(TextureEvalContext(), lambda);
         if (p.flags & 1)
             bxdf.Regularize();
         return bxdf;
@@ -130,14 +132,21 @@ std::optional<BxDF> MakeFabricBxDF(const FabricParameters &p) {
 }
 
 bool Valid(Float v) { return std::isfinite(v) && v >= 0; }
-bool Valid(const SampledSpectrum &s) { return Valid(s[0]) && Valid(s[1]) && Valid(s[2]); }
+bool Valid(const SampledSpectrum &s) {
+    for (int i = 0; i < NSpectrumSamples; ++i)
+        if (!Valid(s[i]))
+            return false;
+    return true;
+}
 
 bool Close(Float a, Float b, Float tolerance) {
     return std::abs(a - b) <= tolerance * std::max(std::abs(a), std::abs(b));
 }
 bool Close(const SampledSpectrum &a, const SampledSpectrum &b, Float tolerance) {
-    return Close(a[0], b[0], tolerance) && Close(a[1], b[1], tolerance) &&
-           Close(a[2], b[2], tolerance);
+    for (int i = 0; i < NSpectrumSamples; ++i)
+        if (!Close(a[i], b[i], tolerance))
+            return false;
+    return true;
 }
 
 std::string Show(Vector3f v) {

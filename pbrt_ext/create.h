@@ -24,8 +24,14 @@ inline std::string ResolvePath(const std::string &folder, const std::string &pat
 
 // Scene options (create_options.cpp).
 Filter CreateFilter(const SceneEntity &filter);
-RGBFilm CreateFilm(const SceneEntity &film, Filter filter, const RenderOverrides &overrides);
+// exposureTime: the camera's shutter interval, which with the film's ISO sets pbrt-v4's imaging
+// ratio.
+RGBFilm CreateFilm(const SceneEntity &film, Float exposureTime, Filter filter,
+                   const RenderOverrides &overrides);
 Camera CreateCamera(const CameraSceneEntity &camera, const RGBFilm &film);
+// The camera's shutterclose - shutteropen (pbrt-v4's exposure time); throws ParseError unless
+// positive.
+Float ExposureTime(const CameraSceneEntity &camera);
 Sampler CreateSampler(const SceneEntity &sampler, Point2i fullResolution,
                       const RenderOverrides &overrides);
 // The integrator's options, and the light sampler's name ("power" or "uniform").
@@ -33,9 +39,10 @@ PathIntegratorOptions CreateIntegrator(const SceneEntity &integrator,
                                        const RenderOverrides &overrides,
                                        std::string *lightSampler);
 
-// A spectrum parameter ("rgb", "blackbody", "spectrum": named, file, samples) as RGB.
-SampledSpectrum GetRGB(const ParameterDictionary &parameters, const std::string &name,
-                       SampledSpectrum defaultValue, SpectrumKind kind, const std::string &folder);
+// A spectrum parameter ("rgb", "blackbody", "spectrum": named, file, samples), with RGB read in
+// sRGB as the use `type` asks (pbrt_ext/spectra.h).
+Spectrum GetSpectrum(const ParameterDictionary &parameters, const std::string &name,
+                     Spectrum defaultValue, SpectrumType type, const std::string &folder);
 
 // Material parameters that may be constants or named textures (create_textures.cpp). A named
 // texture is created the first time a material refers to it, and only then: a texture nothing
@@ -47,8 +54,8 @@ class TextureResolver {
 
     FloatTexture Float(const ParameterDictionary &parameters, const std::string &name,
                        pbrt::Float defaultValue);
-    SpectrumTexture Spectrum(const ParameterDictionary &parameters, const std::string &name,
-                             SampledSpectrum defaultValue, SpectrumKind kind);
+    SpectrumTexture GetSpectrumTexture(const ParameterDictionary &parameters, const std::string &name,
+                                       pbrt::Spectrum defaultValue, SpectrumType type);
     const std::string &Folder() const { return folder; }
 
   private:

@@ -3,6 +3,8 @@
 // "illuminance" fix the emitted power where pbrt-v4 defines them).
 #include "pbrt_ext/create.h"
 
+#include "pbrt_ext/spectra.h"
+#include "pbrt_ext/util/colorspace.h"
 #include "pbrt_ext/util/error.h"
 
 #include <cmath>
@@ -10,22 +12,26 @@
 
 namespace pbrt {
 
-SampledSpectrum GetRGB(const ParameterDictionary &parameters, const std::string &name,
-                       SampledSpectrum defaultValue, SpectrumKind kind, const std::string &folder) {
+Spectrum GetSpectrum(const ParameterDictionary &parameters, const std::string &name,
+                     Spectrum defaultValue, SpectrumType type, const std::string &folder) {
     std::optional<SpectrumParam> s = parameters.GetOneSpectrum(name);
-    return s ? SpectrumToRGB(*s, kind, folder) : defaultValue;
+    return s ? CreateSpectrum(*s, type, RGBColorSpace::sRGB(), folder) : defaultValue;
 }
 
 namespace {
 
-// An emission spectrum in RGB with luminance 1 for non-RGB spectra (pbrt-v4 divides the scale by
-// SpectrumToPhotometric; an "rgb" value passes unchanged). Default: white.
-SampledSpectrum Emission(const ParameterDictionary &p, const std::string &name,
-                         const std::string &folder) {
-    std::optional<SpectrumParam> s = p.GetOneSpectrum(name);
-    if (!s)
-        return SampledSpectrum(1.f);
-    return SpectrumToRGB(*s, SpectrumKind::Illuminant, folder) / SpectrumToPhotometric(*s, folder);
+// An emission spectrum, the colour space's illuminant by default, and the factor that makes
+// it 1 nit: pbrt-v4 divides a light's scale by SpectrumToPhotometric, so that "scale" (and
+// "power", "illuminance") are photometric whatever the spectrum's units.
+struct Emission {
+    Spectrum spectrum;
+    Float toNits;
+};
+Emission GetEmission(const ParameterDictionary &p, const std::string &name, const std::string &folder) {
+    Spectrum s = GetSpectrum(p, name, Spectrum::DenselySampled(RGBColorSpace::sRGB().illuminant),
+                             SpectrumType::Illuminant, folder);
+    Float nits = SpectrumToPhotometric(s);
+    return {s.IsConstant() ? s : Spectrum::DenselySampled(s), nits > 0 ? 1 / nits : 0};
 }
 
 // The rotation taking +z to w (columns: a frame around w).
@@ -35,7 +41,7 @@ Transform RotationFromZ(Vector3f w) {
                                      f.y.z, f.z.z, 0, 0, 0, 0, 1));
 }
 
-Light CreateSpotLight(const TransformedSceneEntity &e, SampledSpectrum I, Float scale) {
+Light CreateSpotLight(const TransformedSceneEntity &e, Spectrum I, Float scale) {
     const ParameterDictionary &p = e.parameters;
     Float coneAngle = p.GetOneFloat("coneangle", 30), coneDelta = p.GetOneFloat("conedelta", 5);
     Point3f from = p.GetOnePoint3f("from", Point3f(0, 0, 0)),
@@ -62,11 +68,12 @@ Light CreateInfiniteLight(const TransformedSceneEntity &e, Float scale,
     }
     Float illuminance = p.GetOneFloat("illuminance", -1);
     if (filename.empty()) {
-        SampledSpectrum L = Emission(p, "L", folder);
+        Emission L = GetEmission(p, "L", folder);
+        scale *= L.toNits;
         if (illuminance > 0)
             scale *= illuminance / Pi;  // a uniform sky of radiance 1 gives E = π
         p.ReportUnused();
-        return UniformInfiniteLight(L, scale);
+        return UniformInfiniteLight(L.spectrum, scale);
     }
     if (p.HasParameter("L"))
         throw ParseError(*p.Loc("L"), "an infinite light takes \"L\" or \"filename\", not both");
@@ -78,7 +85,9 @@ Light CreateInfiniteLight(const TransformedSceneEntity &e, Float scale,
     if (!std::filesystem::is_regular_file(path))
         throw ParseError(*p.Loc("filename"), "cannot open image \"" + filename + "\" (looked for " +
                                                  path + ")");
-    return ImageInfiniteLight(e.worldFromObject, Image::Read(path), scale);
+    const RGBColorSpace &cs = RGBColorSpace::sRGB();
+    scale /= SpectrumToPhotometric(Spectrum::DenselySampled(cs.illuminant));
+    return ImageInfiniteLight(e.worldFromObject, Image::Read(path), scale, &cs);
 }
 
 }  // namespace
@@ -87,22 +96,24 @@ std::optional<Light> CreateLight(const TransformedSceneEntity &e, const std::str
     const ParameterDictionary &p = e.parameters;
     Float scale = p.GetOneFloat("scale", 1);
     if (e.name == "point") {
-        SampledSpectrum I = Emission(p, "I", folder);
+        Emission I = GetEmission(p, "I", folder);
+        scale *= I.toNits;
         Float power = p.GetOneFloat("power", -1);
         if (power > 0)
             scale *= power / (4 * Pi);
         Point3f from = p.GetOnePoint3f("from", Point3f(0, 0, 0));
         p.ReportUnused();
-        return PointLight(e.worldFromObject * Translate(Vector3f(from)), I, scale);
+        return PointLight(e.worldFromObject * Translate(Vector3f(from)), I.spectrum, scale);
     }
     if (e.name == "spot") {
-        SampledSpectrum I = Emission(p, "I", folder);
-        Light light = CreateSpotLight(e, I, scale);
+        Emission I = GetEmission(p, "I", folder);
+        Light light = CreateSpotLight(e, I.spectrum, scale * I.toNits);
         p.ReportUnused();
         return light;
     }
     if (e.name == "distant") {
-        SampledSpectrum L = Emission(p, "L", folder);
+        Emission L = GetEmission(p, "L", folder);
+        scale *= L.toNits;
         Point3f from = p.GetOnePoint3f("from", Point3f(0, 0, 0)),
                 to = p.GetOnePoint3f("to", Point3f(0, 0, 1));
         Float illuminance = p.GetOneFloat("illuminance", -1);
@@ -110,7 +121,7 @@ std::optional<Light> CreateLight(const TransformedSceneEntity &e, const std::str
             scale *= illuminance;
         p.ReportUnused();
         // The light arrives from worldFromLight(0, 0, 1): toward `from`, seen from `to`.
-        return DistantLight(e.worldFromObject * RotationFromZ(from - to), L, scale);
+        return DistantLight(e.worldFromObject * RotationFromZ(from - to), L.spectrum, scale);
     }
     if (e.name == "infinite")
         return CreateInfiniteLight(e, scale, folder);
@@ -127,8 +138,9 @@ AreaLightDescription CreateAreaLight(const SceneEntity &e, const std::string &fo
     if (e.name != "diffuse")
         throw ParseError(e.loc, "unknown AreaLightSource \"" + e.name + "\": expected diffuse");
     AreaLightDescription light;
-    light.L = Emission(p, "L", folder);
-    light.scale = p.GetOneFloat("scale", 1);
+    Emission L = GetEmission(p, "L", folder);
+    light.L = L.spectrum;
+    light.scale = p.GetOneFloat("scale", 1) * L.toNits;
     light.twoSided = p.GetOneBool("twosided", false);
     if (p.HasParameter("power")) {
         p.GetOneFloat("power", 0);

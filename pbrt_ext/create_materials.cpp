@@ -26,39 +26,30 @@ Roughness GetRoughness(const ParameterDictionary &p, TextureResolver &textures,
 void GetConductorSpectra(const ParameterDictionary &p, TextureResolver &textures,
                          const std::string &prefix, ConductorMaterial *m) {
     if (p.HasParameter("reflectance")) {
-        SampledSpectrum r = Clamp(textures.Spectrum(p, "reflectance", SampledSpectrum(0.f),
-                                                    SpectrumKind::Reflectance)
-                                      .Evaluate(TextureEvalContext()),
-                                  Float(0), Float(0.9999f));
-        m->eta = SampledSpectrum(1.f);
-        m->k = 2 * Sqrt(r) / Sqrt(ClampZero(SampledSpectrum(1.f) - r));
+        m->reflectance = textures.GetSpectrumTexture(p, "reflectance", Spectrum(0.f), SpectrumType::Albedo);
         return;
     }
-    SpectrumParam copperEta{SpectrumParamKind::Named, {}, "metal-Cu-eta", {}},
-        copperK{SpectrumParamKind::Named, {}, "metal-Cu-k", {}};
-    SampledSpectrum defaultEta = SpectrumToRGB(copperEta, SpectrumKind::Unbounded, textures.Folder());
-    SampledSpectrum defaultK = SpectrumToRGB(copperK, SpectrumKind::Unbounded, textures.Folder());
-    m->eta = textures.Spectrum(p, prefix + "eta", defaultEta, SpectrumKind::Unbounded);
-    m->k = textures.Spectrum(p, prefix + "k", defaultK, SpectrumKind::Unbounded);
+    m->eta = textures.GetSpectrumTexture(p, prefix + "eta", *GetNamedSpectrum("metal-Cu-eta"),
+                                         SpectrumType::Unbounded);
+    m->k = textures.GetSpectrumTexture(p, prefix + "k", *GetNamedSpectrum("metal-Cu-k"),
+                                       SpectrumType::Unbounded);
 }
 
-// A dielectric's index: a float, or a named glass at 550 nm (RGB rendering has no dispersion).
-Float GetEta(const ParameterDictionary &p, const std::string &name, Float def) {
+// A dielectric's index: a float, or any spectrum (pbrt-v4: a named glass, samples, a file),
+// which then disperses.
+Spectrum GetEta(const ParameterDictionary &p, const std::string &name, Float def,
+                const std::string &folder) {
     if (!p.HasParameter(name))
-        return def;
+        return Spectrum(def);
     if (p.ParameterType(name) == "float")
-        return p.GetOneFloat(name, def);
-    std::optional<SpectrumParam> s = p.GetOneSpectrum(name);
-    if (s && s->kind == SpectrumParamKind::Named)
-        if (pstd::optional<Float> eta = NamedGlassIOR(s->name, 550))
-            return *eta;
-    throw ParseError(*p.Loc(name), "\"" + name + "\" must be a float or a named glass spectrum");
+        return Spectrum(p.GetOneFloat(name, def));
+    return GetSpectrum(p, name, Spectrum(def), SpectrumType::Unbounded, folder);
 }
 
 LayerParameters GetLayer(const ParameterDictionary &p, TextureResolver &textures) {
     LayerParameters layer;
     layer.thickness = textures.Float(p, "thickness", 0.01f);
-    layer.albedo = textures.Spectrum(p, "albedo", SampledSpectrum(0.f), SpectrumKind::Reflectance);
+    layer.albedo = textures.GetSpectrumTexture(p, "albedo", Spectrum(0.f), SpectrumType::Albedo);
     layer.g = textures.Float(p, "g", 0);
     layer.maxDepth = p.GetOneInt("maxdepth", 10);
     layer.nSamples = p.GetOneInt("nsamples", 1);
@@ -70,8 +61,7 @@ LayerParameters GetLayer(const ParameterDictionary &p, TextureResolver &textures
 FabricMaterial CreateFabricMaterial(const ParameterDictionary &p, TextureResolver &textures,
                                     const RenderOverrides &overrides) {
     FabricMaterial m;
-    m.reflectance = textures.Spectrum(p, "reflectance", SampledSpectrum(0.5f),
-                                      SpectrumKind::Reflectance);
+    m.reflectance = textures.GetSpectrumTexture(p, "reflectance", Spectrum(0.5f), SpectrumType::Albedo);
     m.roughness = textures.Float(p, "roughness", 0.5f);
     m.threadAngle = p.GetOneFloat("threadangle", 0);
     m.threadElevation = p.GetOneFloat("threadelevation", 0);
@@ -85,7 +75,7 @@ FabricMaterial CreateFabricMaterial(const ParameterDictionary &p, TextureResolve
     if (overrides.fabricSampler)
         m.sampling = *overrides.fabricSampler;
     if (p.HasParameter("diffuse"))
-        m.diffuse = textures.Spectrum(p, "diffuse", SampledSpectrum(0.f), SpectrumKind::Reflectance);
+        m.diffuse = textures.GetSpectrumTexture(p, "diffuse", Spectrum(0.f), SpectrumType::Albedo);
     if (normalization == "unitpeak")
         m.normalization = FabricNormalization::UnitPeak;
     else if (normalization != "paper")
@@ -119,8 +109,7 @@ std::optional<Material> CreateMaterial(const SceneEntity &e, const std::string &
     const ParameterDictionary &p = e.parameters;
     std::optional<Material> material;
     if (type == "diffuse" || type.empty()) {
-        material = DiffuseMaterial{textures.Spectrum(p, "reflectance", SampledSpectrum(0.5f),
-                                                     SpectrumKind::Reflectance)};
+        material = DiffuseMaterial{textures.GetSpectrumTexture(p, "reflectance", Spectrum(0.5f), SpectrumType::Albedo)};
     } else if (type == "conductor") {
         ConductorMaterial m;
         GetConductorSpectra(p, textures, "", &m);
@@ -131,30 +120,27 @@ std::optional<Material> CreateMaterial(const SceneEntity &e, const std::string &
         material = m;
     } else if (type == "dielectric") {
         DielectricMaterial m;
-        m.eta = GetEta(p, "eta", 1.5f);
+        m.eta = GetEta(p, "eta", 1.5f, textures.Folder());
         Roughness r = GetRoughness(p, textures);
         m.uRoughness = r.u;
         m.vRoughness = r.v;
         m.remapRoughness = p.GetOneBool("remaproughness", true);
         material = m;
     } else if (type == "thindielectric") {
-        material = ThinDielectricMaterial{GetEta(p, "eta", 1.5f)};
+        material = ThinDielectricMaterial{GetEta(p, "eta", 1.5f, textures.Folder())};
     } else if (type == "diffusetransmission") {
         DiffuseTransmissionMaterial m;
-        m.reflectance = textures.Spectrum(p, "reflectance", SampledSpectrum(0.25f),
-                                          SpectrumKind::Reflectance);
-        m.transmittance = textures.Spectrum(p, "transmittance", SampledSpectrum(0.25f),
-                                            SpectrumKind::Reflectance);
+        m.reflectance = textures.GetSpectrumTexture(p, "reflectance", Spectrum(0.25f), SpectrumType::Albedo);
+        m.transmittance = textures.GetSpectrumTexture(p, "transmittance", Spectrum(0.25f), SpectrumType::Albedo);
         m.scale = p.GetOneFloat("scale", 1);
         material = m;
     } else if (type == "coateddiffuse") {
         CoatedDiffuseMaterial m;
-        m.reflectance = textures.Spectrum(p, "reflectance", SampledSpectrum(0.5f),
-                                          SpectrumKind::Reflectance);
+        m.reflectance = textures.GetSpectrumTexture(p, "reflectance", Spectrum(0.5f), SpectrumType::Albedo);
         Roughness r = GetRoughness(p, textures);
         m.uRoughness = r.u;
         m.vRoughness = r.v;
-        m.eta = GetEta(p, "eta", 1.5f);
+        m.eta = GetEta(p, "eta", 1.5f, textures.Folder());
         m.remapRoughness = p.GetOneBool("remaproughness", true);
         m.layer = GetLayer(p, textures);
         material = m;
@@ -163,7 +149,7 @@ std::optional<Material> CreateMaterial(const SceneEntity &e, const std::string &
         Roughness interface = GetRoughness(p, textures, "interface.");
         m.interfaceURoughness = interface.u;
         m.interfaceVRoughness = interface.v;
-        m.interfaceEta = GetEta(p, "interface.eta", 1.5f);
+        m.interfaceEta = GetEta(p, "interface.eta", 1.5f, textures.Folder());
         GetConductorSpectra(p, textures, "conductor.", &m.conductor);
         Roughness conductor = GetRoughness(p, textures, "conductor.");
         m.conductor.uRoughness = conductor.u;

@@ -2,6 +2,7 @@
 // defaults; unsupported types map to the nearest supported one with a warning).
 #include "pbrt_ext/create.h"
 
+#include "pbrt_ext/util/colorspace.h"
 #include "pbrt_ext/util/error.h"
 #include "pbrt_ext/util/resourcelimits.h"
 
@@ -24,14 +25,6 @@ void Substitute(const SceneEntity &entity, const char *what, const char *replace
 
 Vector2f Radius(const ParameterDictionary &p, Float def) {
     return Vector2f(p.GetOneFloat("xradius", def), p.GetOneFloat("yradius", def));
-}
-
-// A parameter that changes the image in pbrt-v4 but has no effect here: warn if it is set to
-// anything but pbrt-v4's neutral value.
-void WarnIfSet(const SceneEntity &e, const char *name, Float neutral) {
-    if (e.parameters.HasParameter(name) && e.parameters.GetOneFloat(name, neutral) != neutral)
-        WarningAt(*e.parameters.Loc(name), "film parameter \"%s\" is not supported: ignored",
-                  name);
 }
 
 // Film limits. Pixel coordinates are 32-bit floats, which past 2^24 cannot tell neighbouring
@@ -161,7 +154,21 @@ Filter CreateFilter(const SceneEntity &e) {
     return filter;
 }
 
-RGBFilm CreateFilm(const SceneEntity &e, Filter filter, const RenderOverrides &overrides) {
+// pbrt-v4's PixelSensor::Create parameters: the sensor, ISO and white balance of the film, and
+// the camera's exposure time.
+PixelSensor CreateSensor(const SceneEntity &e, Float exposureTime) {
+    const ParameterDictionary &p = e.parameters;
+    std::string name = p.GetOneString("sensor", "cie1931");
+    try {
+        return PixelSensor::Create(name, p.GetOneFloat("iso", 100), p.GetOneFloat("whitebalance", 0),
+                                   exposureTime, RGBColorSpace::sRGB());
+    } catch (const std::invalid_argument &error) {
+        throw ParseError(p.Loc("sensor") ? *p.Loc("sensor") : e.loc, error.what());
+    }
+}
+
+RGBFilm CreateFilm(const SceneEntity &e, Float exposureTime, Filter filter,
+                   const RenderOverrides &overrides) {
     const ParameterDictionary &p = e.parameters;
     if (e.name == "gbuffer" || e.name == "spectral")
         Substitute(e, "Film", "\"rgb\" (its color output)");
@@ -190,10 +197,7 @@ RGBFilm CreateFilm(const SceneEntity &e, Filter filter, const RenderOverrides &o
                 resolution, Bounds2f(Point2f(crop[0], crop[2]), Point2f(crop[1], crop[3])));
         });
     }
-    WarnIfSet(e, "iso", 100);
-    WarnIfSet(e, "whitebalance", 0);
-    WarnIfSet(e, "exposuretime", 1);
-    p.GetOneString("sensor", "cie1931");
+    PixelSensor sensor = CreateSensor(e, exposureTime);
     p.GetOneFloat("diagonal", 35);
     p.GetOneBool("savefp16", true);
     Float maxComponent = p.GetOneFloat("maxcomponentvalue", Infinity);
@@ -201,12 +205,24 @@ RGBFilm CreateFilm(const SceneEntity &e, Filter filter, const RenderOverrides &o
         p.ReportUnused();
     CheckFilmSize(e, resolution, pixelBounds);
     return WithPixelBoundsLoc(e, overrides, [&] {
-        return RGBFilm(resolution, pixelBounds, std::move(filter), filename, maxComponent);
+        return RGBFilm(resolution, pixelBounds, std::move(filter), filename, maxComponent, sensor,
+                       &RGBColorSpace::sRGB());
     });
+}
+
+Float ExposureTime(const CameraSceneEntity &e) {
+    const ParameterDictionary &p = e.parameters;
+    Float exposure = p.GetOneFloat("shutterclose", 1) - p.GetOneFloat("shutteropen", 0);
+    if (!(exposure > 0))
+        throw ParseError(p.Loc("shutterclose") ? *p.Loc("shutterclose") : e.loc,
+                         fmt::format("the shutter interval {} is not positive; expected "
+                                     "\"shutterclose\" after \"shutteropen\"", exposure));
+    return exposure;
 }
 
 Camera CreateCamera(const CameraSceneEntity &e, const RGBFilm &film) {
     const ParameterDictionary &p = e.parameters;
+    ExposureTime(e);  // the film's imaging ratio uses it; reading it marks it used
     Transform worldFromCamera = Inverse(e.cameraFromWorld);
     Float lensRadius = p.GetOneFloat("lensradius", 0),
           focalDistance = p.GetOneFloat("focaldistance", 1e6f);

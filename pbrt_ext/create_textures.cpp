@@ -101,10 +101,11 @@ FloatTexture TextureResolver::Float(const ParameterDictionary &p, const std::str
     return cache->floats.emplace(texture, std::move(result)).first->second;
 }
 
-SpectrumTexture TextureResolver::Spectrum(const ParameterDictionary &p, const std::string &name,
-                                          SampledSpectrum defaultValue, SpectrumKind kind) {
+SpectrumTexture TextureResolver::GetSpectrumTexture(const ParameterDictionary &p,
+                                                    const std::string &name,
+                                                    pbrt::Spectrum defaultValue, SpectrumType type) {
     if (!p.HasParameter(name) || p.ParameterType(name) != "texture")
-        return SpectrumTexture(GetRGB(p, name, defaultValue, kind, folder));
+        return SpectrumTexture(GetSpectrum(p, name, std::move(defaultValue), type, folder));
     std::string texture = p.GetTexture(name);
     if (auto it = cache->spectra.find(texture); it != cache->spectra.end())
         return it->second;
@@ -114,25 +115,25 @@ SpectrumTexture TextureResolver::Spectrum(const ParameterDictionary &p, const st
     const TransformedSceneEntity &e = entity->second;
     const ParameterDictionary &tp = e.parameters;
     SpectrumTexture result;
-    const SampledSpectrum one(1.f), zero(0.f);
+    const pbrt::Spectrum one(1.f), zero(0.f);
     if (e.name == "constant") {
-        result = SpectrumTexture(GetRGB(tp, "value", one, kind, folder));
+        result = SpectrumTexture(GetSpectrum(tp, "value", one, type, folder));
     } else if (e.name == "scale") {
-        result = SpectrumScaledTexture(Spectrum(tp, "tex", one, kind), Float(tp, "scale", 1));
+        result = SpectrumScaledTexture(GetSpectrumTexture(tp, "tex", one, type), Float(tp, "scale", 1));
     } else if (e.name == "mix") {
-        result = SpectrumMixTexture(Spectrum(tp, "tex1", zero, kind), Spectrum(tp, "tex2", one, kind),
-                                    Float(tp, "amount", 0.5f));
+        result = SpectrumMixTexture(GetSpectrumTexture(tp, "tex1", zero, type),
+                                    GetSpectrumTexture(tp, "tex2", one, type), Float(tp, "amount", 0.5f));
     } else if (e.name == "checkerboard") {
-        result = SpectrumCheckerboardTexture(GetMapping(e), Spectrum(tp, "tex1", one, kind),
-                                             Spectrum(tp, "tex2", zero, kind));
+        result = SpectrumCheckerboardTexture(GetMapping(e), GetSpectrumTexture(tp, "tex1", one, type),
+                                             GetSpectrumTexture(tp, "tex2", zero, type));
         tp.GetOneInt("dimension", 2);
     } else if (e.name == "imagemap") {
         SpectrumImageTexture t = CreateImageTexture<SpectrumImageTexture>(e, folder);
-        t.kind = kind;
+        t.type = type;
         result = std::move(t);
     } else {
         WarningAt(e.loc, "texture \"%s\" is not supported: constant 0.5", e.name.c_str());
-        return cache->spectra.emplace(texture, SpectrumTexture(SampledSpectrum(0.5f))).first->second;
+        return cache->spectra.emplace(texture, SpectrumTexture(pbrt::Spectrum(0.5f))).first->second;
     }
     tp.ReportUnused();
     return cache->spectra.emplace(texture, std::move(result)).first->second;

@@ -25,9 +25,13 @@ Bounds2i PixelBoundsFromCropWindow(Point2i fullResolution, Bounds2f cropWindow) 
 }
 
 RGBFilm::RGBFilm(Point2i fullResolution, Bounds2i pixelBounds, Filter filter, std::string filename,
-                 Float maxComponentValue)
+                 Float maxComponentValue, std::optional<PixelSensor> sensor,
+                 const RGBColorSpace *colorSpace)
     : fullResolution(fullResolution), pixelBounds(pixelBounds), filter(std::move(filter)),
-      filename(std::move(filename)), maxComponentValue(maxComponentValue) {
+      filename(std::move(filename)), maxComponentValue(maxComponentValue),
+      sensor(sensor ? *sensor : PixelSensor::Create("cie1931", 100, 0, 1, RGBColorSpace::sRGB())),
+      colorSpace(colorSpace ? colorSpace : &RGBColorSpace::sRGB()),
+      outputRGBFromSensorRGB(this->colorSpace->RGBFromXYZ * this->sensor.XYZFromSensorRGB) {
     if (fullResolution.x < 1 || fullResolution.y < 1)
         throw std::runtime_error("film: the resolution must be positive, not " + std::to_string(fullResolution.x) +
                                  "x" + std::to_string(fullResolution.y));
@@ -42,7 +46,7 @@ Image RGBFilm::GetImage() const {
     Vector2i size = pixelBounds.Diagonal();
     Image image(Point2i(size.x, size.y));
     for (Point2i p : pixelBounds) {
-        SampledSpectrum rgb = GetPixelRGB(p);
+        RGB rgb = GetPixelRGB(p);
         Point2i q(p.x - pixelBounds.pMin.x, p.y - pixelBounds.pMin.y);
         for (int c = 0; c < 3; ++c) image.SetChannel(q, c, rgb[c]);
     }
@@ -52,6 +56,7 @@ Image RGBFilm::GetImage() const {
 void RGBFilm::WriteImage(ImageMetadata metadata) const {
     metadata.fullResolution = fullResolution;
     metadata.pixelBounds = pixelBounds;
+    metadata.colorSpace = colorSpace;
     GetImage().Write(filename, metadata);
 }
 

@@ -1,21 +1,27 @@
-// The RGB film (pbrt-v4's RGBFilm, reduced: the sensor is the identity on RGB, no splats, no
-// output color-space conversion, no imaging-ratio exposure).
+// The RGB film (pbrt-v4's RGBFilm, without splats).
 //
-// Each pixel accumulates the filter-weighted radiance sum and the weight sum of its samples;
-// its value is their ratio (filter importance sampling, pbrt-v4). Only the pixels in
-// pixelBounds (the crop window) exist. AddSample needs no locks as long as concurrent threads
-// write distinct pixels, as tiles do.
+// A sample's spectral radiance becomes the sensor's RGB (pbrt_ext/sensor.h: the CIE 1931 XYZ
+// observer by default, or a measured camera, scaled by the imaging ratio exposure time x ISO /
+// 100); each pixel accumulates the filter-weighted sum of those and the weight sum; its value is
+// their ratio (filter importance sampling, pbrt-v4) taken to the output colour space. Only the
+// pixels in pixelBounds (the crop window) exist. AddSample needs no locks as long as concurrent
+// threads write distinct pixels, as tiles do.
 #pragma once
 
 #include "pbrt_ext/filters.h"
 #include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/sensor.h"
 #include "pbrt_ext/util/bounds.h"
+#include "pbrt_ext/util/color.h"
+#include "pbrt_ext/util/colorspace.h"
 #include "pbrt_ext/util/image.h"
 #include "pbrt_ext/util/math.h"
 #include "pbrt_ext/util/spectrum.h"
 #include "pbrt_ext/util/vecmath.h"
 
+#include <algorithm>
 #include <cassert>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,31 +36,43 @@ class RGBFilm {
   public:
     // Throws std::runtime_error for a non-positive resolution or pixel bounds that are empty or
     // not inside the full resolution.
+    // sensor and colorSpace default to pbrt-v4's: the cie1931 sensor at ISO 100 and exposure 1,
+    // and sRGB.
     RGBFilm(Point2i fullResolution, Bounds2i pixelBounds, Filter filter, std::string filename,
-            Float maxComponentValue = Infinity);
+            Float maxComponentValue = Infinity, std::optional<PixelSensor> sensor = {},
+            const RGBColorSpace *colorSpace = nullptr);
 
     Point2i FullResolution() const { return fullResolution; }
     Bounds2i PixelBounds() const { return pixelBounds; }
     const Filter &GetFilter() const { return filter; }
     const std::string &GetFilename() const { return filename; }
+    const RGBColorSpace &ColorSpace() const { return *colorSpace; }
+    const PixelSensor &Sensor() const { return sensor; }
 
-    // L is scaled down, keeping its hue, so that no channel exceeds maxComponentValue: a rare
-    // very bright path then costs bias instead of a firefly. weight is the filter sample's.
-    void AddSample(Point2i pPixel, SampledSpectrum L, Float weight) {
+    // The wavelengths a camera sample carries (pbrt-v4: visible-importance sampled).
+    SampledWavelengths SampleWavelengths(Float u) const { return SampledWavelengths::SampleVisible(u); }
+
+    // The sensor's RGB of L is scaled down, keeping its hue, so that no channel exceeds
+    // maxComponentValue: a rare very bright path then costs bias instead of a firefly. weight
+    // is the filter sample's.
+    void AddSample(Point2i pPixel, const SampledSpectrum &L, const SampledWavelengths &lambda,
+                   Float weight) {
         assert(InsideExclusive(pPixel, pixelBounds));
-        Float m = L.MaxComponentValue();
-        if (m > maxComponentValue) L *= maxComponentValue / m;
+        RGB rgb = sensor.ToSensorRGB(L, lambda);
+        Float m = std::max({rgb.r, rgb.g, rgb.b});
+        if (m > maxComponentValue) rgb *= maxComponentValue / m;
         Pixel &pixel = pixels[PixelIndex(pPixel)];
-        for (int c = 0; c < 3; ++c) pixel.rgbSum[c] += double(weight) * double(L[c]);
+        for (int c = 0; c < 3; ++c) pixel.rgbSum[c] += double(weight) * double(rgb[c]);
         pixel.weightSum += weight;
     }
 
-    // The weighted average; black where no sample landed.
-    SampledSpectrum GetPixelRGB(Point2i p) const {
+    // The weighted average in the output colour space; black where no sample landed.
+    RGB GetPixelRGB(Point2i p) const {
         const Pixel &pixel = pixels[PixelIndex(p)];
-        if (pixel.weightSum == 0) return SampledSpectrum(0.f);
-        return SampledSpectrum(Float(pixel.rgbSum[0] / pixel.weightSum), Float(pixel.rgbSum[1] / pixel.weightSum),
-                               Float(pixel.rgbSum[2] / pixel.weightSum));
+        if (pixel.weightSum == 0) return RGB(0, 0, 0);
+        RGB sensorRGB(Float(pixel.rgbSum[0] / pixel.weightSum), Float(pixel.rgbSum[1] / pixel.weightSum),
+                      Float(pixel.rgbSum[2] / pixel.weightSum));
+        return Mul<RGB>(outputRGBFromSensorRGB, sensorRGB);
     }
 
     // The pixels of pixelBounds; its (0, 0) is pixelBounds.pMin.
@@ -81,6 +99,9 @@ class RGBFilm {
     Filter filter;
     std::string filename;
     Float maxComponentValue;
+    PixelSensor sensor;
+    const RGBColorSpace *colorSpace;
+    SquareMatrix<3> outputRGBFromSensorRGB;
     std::vector<Pixel> pixels;
 };
 

@@ -41,7 +41,8 @@ Float PathIntegrator::BSDFHitWeight(bool lightSamplingApplied, Float pdfBSDF,
     return 0;
 }
 
-SampledSpectrum PathIntegrator::Li(Ray ray, Sampler &sampler, RayCounts &rays) const {
+SampledSpectrum PathIntegrator::Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler,
+                                   RayCounts &rays) const {
     SampledSpectrum L(0.f), beta(1.f);
     // Whether next-event estimation covered the vertex the ray leaves from; false at the camera and
     // after specular bounces, where only the path itself can find the emitters.
@@ -55,7 +56,7 @@ SampledSpectrum PathIntegrator::Li(Ray ray, Sampler &sampler, RayCounts &rays) c
             // Only infinite lights are seen by escaping rays; with none, nothing is looked up.
             for (int index : scene.infiniteLights) {
                 const Light &light = scene.lights[index];
-                SampledSpectrum Le = light.Le(ray);
+                SampledSpectrum Le = light.Le(ray, lambda);
                 if (!Le)
                     continue;
                 Float pdfLight = lightSampled ? scene.lightSampler.PMF(index) *
@@ -68,7 +69,7 @@ SampledSpectrum PathIntegrator::Li(Ray ray, Sampler &sampler, RayCounts &rays) c
         SurfaceInteraction &si = hit->intr;
         if (si.areaLightIndex >= 0) {
             const Light &light = scene.lights[si.areaLightIndex];
-            SampledSpectrum Le = light.L(si.p, si.n, si.uv, -ray.d);
+            SampledSpectrum Le = light.L(si.p, si.n, si.uv, -ray.d, lambda);
             if (Le) {
                 Float pdfLight = lightSampled ? scene.lightSampler.PMF(si.areaLightIndex) *
                                                     light.PDF_Li(prevCtx, ray.d, AllowIncompletePDF())
@@ -76,7 +77,7 @@ SampledSpectrum PathIntegrator::Li(Ray ray, Sampler &sampler, RayCounts &rays) c
                 L += beta * Le * BSDFHitWeight(lightSampled, pdfBSDF, pdfLight);
             }
         }
-        std::optional<BSDF> maybeBSDF = scene.GetBSDF(si);
+        std::optional<BSDF> maybeBSDF = scene.GetBSDF(si, lambda);
         if (!maybeBSDF) {
             // An interface between media, which we do not model: continue straight through.
             ray = si.SpawnRay(ray.d);
@@ -93,7 +94,7 @@ SampledSpectrum PathIntegrator::Li(Ray ray, Sampler &sampler, RayCounts &rays) c
         lightSampled = IsNonSpecular(flags) && options.strategy != PathStrategy::BSDF &&
                        !scene.lights.empty();
         if (lightSampled)
-            L += beta * SampleLd(si, bsdf, sampler, rays);
+            L += beta * SampleLd(si, bsdf, lambda, sampler, rays);
 
         Vector3f wo = -ray.d;
         Float u = sampler.Get1D();
@@ -121,7 +122,8 @@ SampledSpectrum PathIntegrator::Li(Ray ray, Sampler &sampler, RayCounts &rays) c
 }
 
 SampledSpectrum PathIntegrator::SampleLd(const SurfaceInteraction &si, const BSDF &bsdf,
-                                         Sampler &sampler, RayCounts &rays) const {
+                                         const SampledWavelengths &lambda, Sampler &sampler,
+                                         RayCounts &rays) const {
     LightSampleContext ctx(si);
     Float uLight = sampler.Get1D();
     Point2f u = sampler.Get2D();
@@ -129,7 +131,7 @@ SampledSpectrum PathIntegrator::SampleLd(const SurfaceInteraction &si, const BSD
     if (!sampled)
         return {};
     const Light &light = scene.lights[sampled->lightIndex];
-    pstd::optional<LightLiSample> ls = light.SampleLi(ctx, u, AllowIncompletePDF());
+    pstd::optional<LightLiSample> ls = light.SampleLi(ctx, u, lambda, AllowIncompletePDF());
     if (!ls || !ls->L || !(ls->pdf > 0))
         return {};
     Vector3f wo = si.wo, wi = ls->wi;

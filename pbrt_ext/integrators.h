@@ -42,13 +42,15 @@ class PathIntegrator {
     PathIntegrator(const Scene &scene, PathIntegratorOptions options)
         : scene(scene), options(options) {}
 
-    // Radiance arriving along ray (from its origin's point of view).
-    SampledSpectrum Li(Ray ray, Sampler &sampler, RayCounts &rays) const;
+    // Radiance arriving along ray (from its origin's point of view) at the wavelengths lambda,
+    // whose secondary wavelengths a dispersive surface may terminate.
+    SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays) const;
 
   private:
     // Direct lighting at an intersection by sampling one light: its contribution weighted for MIS
     // against BSDF sampling (or with weight 1 for strategy Light).
-    SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, Sampler &sampler,
+    SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf,
+                             const SampledWavelengths &lambda, Sampler &sampler,
                              RayCounts &rays) const;
     // Weight of an emitter reached by BSDF sampling with density pdfBSDF, that light sampling
     // from prevCtx would have chosen with density pdfLight.

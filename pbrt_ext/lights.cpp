@@ -1,8 +1,10 @@
 #include "pbrt_ext/lights.h"
 
+#include "pbrt_ext/util/colorspace.h"
 #include "pbrt_ext/util/equalarea.h"
 #include "pbrt_ext/util/math.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 #include <utility>
@@ -34,6 +36,13 @@ Point3f PointOutsideScene(Point3f p, Vector3f wi, Float sceneRadius) {
     return p + wi * (2 * sceneRadius);
 }
 
+// Emission spectra are tabulated once, so that sampling one is a table read; a constant needs
+// no table, and a table is shared, not copied (every triangle of an emissive mesh is a light).
+Spectrum Tabulated(const Spectrum &s) {
+    if (s.IsConstant() || s.Get<std::shared_ptr<const DenselySampledSpectrum>>()) return s;
+    return Spectrum::DenselySampled(s);
+}
+
 // Power of constant radiance L arriving from all directions (or from one, for distant
 // lights) onto the scene's bounding disk, as pbrt-v4 approximates it.
 Float DiskArea(Float sceneRadius) { return Pi * Sqr(sceneRadius); }
@@ -43,17 +52,20 @@ Float DiskArea(Float sceneRadius) { return Pi * Sqr(sceneRadius); }
 // ---------------------------------------------------------------------------------------
 // PointLight
 
-PointLight::PointLight(const Transform &worldFromLight, SampledSpectrum I, Float scale)
-    : pLight(worldFromLight(Point3f(0, 0, 0))), I(I), scale(scale) {}
+PointLight::PointLight(const Transform &worldFromLight, Spectrum I, Float scale)
+    : pLight(worldFromLight(Point3f(0, 0, 0))), I(Tabulated(I)), scale(scale) {}
 
-SampledSpectrum PointLight::Phi() const { return 4 * Pi * scale * I; }
+SampledSpectrum PointLight::Phi(const SampledWavelengths &lambda) const {
+    return 4 * Pi * scale * I.Sample(lambda);
+}
 
-pstd::optional<LightLiSample> PointLight::SampleLi(LightSampleContext ctx, Point2f, bool) const {
+pstd::optional<LightLiSample> PointLight::SampleLi(LightSampleContext ctx, Point2f,
+                                                   const SampledWavelengths &lambda, bool) const {
     Float r2 = DistanceSquared(pLight, ctx.p);
     if (r2 == 0)
         return {};
     Vector3f wi = Normalize(pLight - ctx.p);
-    return LightLiSample{scale * I / r2, wi, 1, pLight, Normal3f(0, 0, 0)};
+    return LightLiSample{scale * I.Sample(lambda) / r2, wi, 1, pLight, Normal3f(0, 0, 0)};
 }
 
 std::string PointLight::ToString() const {
@@ -64,31 +76,32 @@ std::string PointLight::ToString() const {
 // ---------------------------------------------------------------------------------------
 // SpotLight
 
-SpotLight::SpotLight(const Transform &worldFromLight, SampledSpectrum I, Float scale,
+SpotLight::SpotLight(const Transform &worldFromLight, Spectrum I, Float scale,
                      Float totalWidth, Float falloffStart)
-    : worldFromLight(worldFromLight), Iemit(I), scale(scale),
+    : worldFromLight(worldFromLight), Iemit(Tabulated(I)), scale(scale),
       cosFalloffStart(std::cos(Radians(falloffStart))),
       cosFalloffEnd(std::cos(Radians(totalWidth))) {}
 
-SampledSpectrum SpotLight::I(Vector3f w) const {
-    return SmoothStep(CosTheta(w), cosFalloffEnd, cosFalloffStart) * scale * Iemit;
+SampledSpectrum SpotLight::I(Vector3f w, const SampledWavelengths &lambda) const {
+    return SmoothStep(CosTheta(w), cosFalloffEnd, cosFalloffStart) * scale * Iemit.Sample(lambda);
 }
 
 // The full cone up to the falloff start, plus the falloff band at the average of the
 // smoothstep over cos theta (1/2).
-SampledSpectrum SpotLight::Phi() const {
-    return scale * Iemit * 2 * Pi *
+SampledSpectrum SpotLight::Phi(const SampledWavelengths &lambda) const {
+    return scale * Iemit.Sample(lambda) * 2 * Pi *
            ((1 - cosFalloffStart) + (cosFalloffStart - cosFalloffEnd) / 2);
 }
 
-pstd::optional<LightLiSample> SpotLight::SampleLi(LightSampleContext ctx, Point2f, bool) const {
+pstd::optional<LightLiSample> SpotLight::SampleLi(LightSampleContext ctx, Point2f,
+                                                  const SampledWavelengths &lambda, bool) const {
     Point3f p = worldFromLight(Point3f(0, 0, 0));
     Float r2 = DistanceSquared(p, ctx.p);
     if (r2 == 0)
         return {};
     Vector3f wi = Normalize(p - ctx.p);
     Vector3f wLight = Normalize(worldFromLight.ApplyInverse(-wi));
-    SampledSpectrum Li = I(wLight) / r2;
+    SampledSpectrum Li = I(wLight, lambda) / r2;
     if (!Li)
         return {};
     return LightLiSample{Li, wi, 1, p, Normal3f(0, 0, 0)};
@@ -105,19 +118,21 @@ std::string SpotLight::ToString() const {
 // ---------------------------------------------------------------------------------------
 // DistantLight
 
-DistantLight::DistantLight(const Transform &worldFromLight, SampledSpectrum Lemit, Float scale)
-    : wLight(Normalize(worldFromLight(Vector3f(0, 0, 1)))), Lemit(Lemit), scale(scale) {}
+DistantLight::DistantLight(const Transform &worldFromLight, Spectrum Lemit, Float scale)
+    : wLight(Normalize(worldFromLight(Vector3f(0, 0, 1)))), Lemit(Tabulated(Lemit)), scale(scale) {}
 
 void DistantLight::Preprocess(const Bounds3f &sceneBounds) {
     Point3f center;
     sceneBounds.BoundingSphere(&center, &sceneRadius);
 }
 
-SampledSpectrum DistantLight::Phi() const { return scale * Lemit * DiskArea(sceneRadius); }
+SampledSpectrum DistantLight::Phi(const SampledWavelengths &lambda) const {
+    return scale * Lemit.Sample(lambda) * DiskArea(sceneRadius);
+}
 
 pstd::optional<LightLiSample> DistantLight::SampleLi(LightSampleContext ctx, Point2f,
-                                                     bool) const {
-    return LightLiSample{scale * Lemit, wLight, 1, PointOutsideScene(ctx.p, wLight, sceneRadius),
+                                                     const SampledWavelengths &lambda, bool) const {
+    return LightLiSample{scale * Lemit.Sample(lambda), wLight, 1, PointOutsideScene(ctx.p, wLight, sceneRadius),
                          Normal3f(0, 0, 0)};
 }
 
@@ -129,29 +144,30 @@ std::string DistantLight::ToString() const {
 // ---------------------------------------------------------------------------------------
 // DiffuseAreaLight
 
-DiffuseAreaLight::DiffuseAreaLight(Shape shape, SampledSpectrum Lemit, Float scale,
-                                   bool twoSided)
-    : shape(std::move(shape)), area(this->shape.Area()), Lemit(Lemit), scale(scale),
+DiffuseAreaLight::DiffuseAreaLight(Shape shape, Spectrum Lemit, Float scale, bool twoSided)
+    : shape(std::move(shape)), area(this->shape.Area()), Lemit(Tabulated(Lemit)), scale(scale),
       twoSided(twoSided) {}
 
 // Lambertian emission: pi L per unit area and side.
-SampledSpectrum DiffuseAreaLight::Phi() const {
-    return Pi * (twoSided ? 2 : 1) * area * scale * Lemit;
+SampledSpectrum DiffuseAreaLight::Phi(const SampledWavelengths &lambda) const {
+    return Pi * (twoSided ? 2 : 1) * area * scale * Lemit.Sample(lambda);
 }
 
-SampledSpectrum DiffuseAreaLight::L(Point3f, Normal3f n, Point2f, Vector3f w) const {
+SampledSpectrum DiffuseAreaLight::L(Point3f, Normal3f n, Point2f, Vector3f w,
+                                    const SampledWavelengths &lambda) const {
     if (!twoSided && Dot(n, w) < 0)
         return SampledSpectrum(0.f);
-    return scale * Lemit;
+    return scale * Lemit.Sample(lambda);
 }
 
 pstd::optional<LightLiSample> DiffuseAreaLight::SampleLi(LightSampleContext ctx, Point2f u,
+                                                         const SampledWavelengths &lambda,
                                                          bool) const {
     pstd::optional<ShapeSample> ss = shape.Sample(ctx, u);
     if (!ss || !(ss->pdf > 0) || LengthSquared(ss->intr.p - ctx.p) == 0)
         return {};
     Vector3f wi = Normalize(ss->intr.p - ctx.p);
-    SampledSpectrum Le = L(ss->intr.p, ss->intr.n, ss->intr.uv, -wi);
+    SampledSpectrum Le = L(ss->intr.p, ss->intr.n, ss->intr.uv, -wi, lambda);
     if (!Le)
         return {};
     return LightLiSample{Le, wi, ss->pdf, ss->intr.p, ss->intr.n};
@@ -170,25 +186,26 @@ std::string DiffuseAreaLight::ToString() const {
 // ---------------------------------------------------------------------------------------
 // UniformInfiniteLight
 
-UniformInfiniteLight::UniformInfiniteLight(SampledSpectrum Lemit, Float scale)
-    : Lemit(Lemit), scale(scale) {}
+UniformInfiniteLight::UniformInfiniteLight(Spectrum Lemit, Float scale)
+    : Lemit(Tabulated(Lemit)), scale(scale) {}
 
 void UniformInfiniteLight::Preprocess(const Bounds3f &sceneBounds) {
     sceneBounds.BoundingSphere(&sceneCenter, &sceneRadius);
 }
 
-SampledSpectrum UniformInfiniteLight::Phi() const {
-    return 4 * Pi * DiskArea(sceneRadius) * scale * Lemit;
+SampledSpectrum UniformInfiniteLight::Phi(const SampledWavelengths &lambda) const {
+    return 4 * Pi * DiskArea(sceneRadius) * scale * Lemit.Sample(lambda);
 }
 
 // Under MIS, BSDF sampling alone covers a constant environment better than uniform sphere
 // sampling would: the light declines, and PDF_Li says so.
 pstd::optional<LightLiSample> UniformInfiniteLight::SampleLi(LightSampleContext ctx, Point2f u,
+                                                             const SampledWavelengths &lambda,
                                                              bool allowIncompletePDF) const {
     if (allowIncompletePDF)
         return {};
     Vector3f wi = SampleUniformSphere(u);
-    return LightLiSample{scale * Lemit, wi, UniformSpherePDF(),
+    return LightLiSample{scale * Lemit.Sample(lambda), wi, UniformSpherePDF(),
                          PointOutsideScene(ctx.p, wi, sceneRadius), Normal3f(0, 0, 0)};
 }
 
@@ -196,7 +213,9 @@ Float UniformInfiniteLight::PDF_Li(LightSampleContext, Vector3f, bool allowIncom
     return allowIncompletePDF ? 0 : UniformSpherePDF();
 }
 
-SampledSpectrum UniformInfiniteLight::Le(const Ray &) const { return scale * Lemit; }
+SampledSpectrum UniformInfiniteLight::Le(const Ray &, const SampledWavelengths &lambda) const {
+    return scale * Lemit.Sample(lambda);
+}
 
 std::string UniformInfiniteLight::ToString() const {
     return "[ UniformInfiniteLight Lemit: " + Lemit.ToString() +
@@ -209,9 +228,10 @@ std::string UniformInfiniteLight::ToString() const {
 namespace {
 
 // Radiance is the pixel clamped at zero (EXR filtering can ring below it).
-SampledSpectrum PixelRGB(const Image &image, Point2i p) {
-    return ClampZero(image.GetChannels(p));
+RGB ClampZero(RGB rgb) {
+    return RGB(std::max<Float>(0, rgb.r), std::max<Float>(0, rgb.g), std::max<Float>(0, rgb.b));
 }
+RGB PixelRGB(const Image &image, Point2i p) { return ClampZero(image.GetChannels(p)); }
 
 // The pixels' average clamped RGB, row-major as PiecewiseConstant2D expects. Unlike
 // Image::GetSamplingDistribution (pbrt-v4's, which averages raw values), the density is then
@@ -254,8 +274,10 @@ Image CheckedSquare(Image image) {
 
 }  // namespace
 
-ImageInfiniteLight::ImageInfiniteLight(const Transform &worldFromLight, Image image, Float scale)
-    : worldFromLight(worldFromLight), image(CheckedSquare(std::move(image))), scale(scale) {
+ImageInfiniteLight::ImageInfiniteLight(const Transform &worldFromLight, Image image, Float scale,
+                                       const RGBColorSpace *colorSpace)
+    : worldFromLight(worldFromLight), image(CheckedSquare(std::move(image))),
+      colorSpace(colorSpace ? colorSpace : &RGBColorSpace::sRGB()), scale(scale) {
     Point2i res = this->image.Resolution();
     std::vector<Float> f = SamplingFunction(this->image);
     distribution = PiecewiseConstant2D(f, res.x, res.y);
@@ -268,21 +290,23 @@ void ImageInfiniteLight::Preprocess(const Bounds3f &sceneBounds) {
 
 // Nearest pixel, as pbrt-v4; uv on the square's far edges gives a pixel index one past the
 // end, which the octahedral wrap folds back onto the image.
-SampledSpectrum ImageInfiniteLight::ImageLe(Point2f uv) const {
-    return scale * ClampZero(image.LookupNearest(uv, WrapMode::OctahedralSphere));
+SampledSpectrum ImageInfiniteLight::ImageLe(Point2f uv, const SampledWavelengths &lambda) const {
+    RGB rgb = ClampZero(image.LookupNearest(uv, WrapMode::OctahedralSphere));
+    return scale * RGBIlluminantSpectrum(*colorSpace, rgb).Sample(lambda);
 }
 
 // Average radiance over the sphere times the 4 pi pi r^2 of a uniform environment.
-SampledSpectrum ImageInfiniteLight::Phi() const {
+SampledSpectrum ImageInfiniteLight::Phi(const SampledWavelengths &lambda) const {
     Point2i res = image.Resolution();
     SampledSpectrum sumL(0.f);
     for (int y = 0; y < res.y; ++y)
         for (int x = 0; x < res.x; ++x)
-            sumL += PixelRGB(image, Point2i(x, y));
+            sumL += RGBIlluminantSpectrum(*colorSpace, PixelRGB(image, Point2i(x, y))).Sample(lambda);
     return 4 * Pi * DiskArea(sceneRadius) * scale * sumL / (Float(res.x) * res.y);
 }
 
 pstd::optional<LightLiSample> ImageInfiniteLight::SampleLi(LightSampleContext ctx, Point2f u,
+                                                           const SampledWavelengths &lambda,
                                                            bool allowIncompletePDF) const {
     Float mapPDF = 0;
     Point2f uv = allowIncompletePDF ? compensatedDistribution.Sample(u, &mapPDF)
@@ -290,7 +314,7 @@ pstd::optional<LightLiSample> ImageInfiniteLight::SampleLi(LightSampleContext ct
     if (mapPDF == 0)
         return {};
     Vector3f wi = Normalize(worldFromLight(EqualAreaSquareToSphere(uv)));
-    return LightLiSample{ImageLe(uv), wi, mapPDF / (4 * Pi),
+    return LightLiSample{ImageLe(uv, lambda), wi, mapPDF / (4 * Pi),
                          PointOutsideScene(ctx.p, wi, sceneRadius), Normal3f(0, 0, 0)};
 }
 
@@ -300,8 +324,8 @@ Float ImageInfiniteLight::PDF_Li(LightSampleContext, Vector3f wi, bool allowInco
     return mapPDF / (4 * Pi);
 }
 
-SampledSpectrum ImageInfiniteLight::Le(const Ray &ray) const {
-    return ImageLe(EqualAreaSphereToSquare(Normalize(worldFromLight.ApplyInverse(ray.d))));
+SampledSpectrum ImageInfiniteLight::Le(const Ray &ray, const SampledWavelengths &lambda) const {
+    return ImageLe(EqualAreaSphereToSquare(Normalize(worldFromLight.ApplyInverse(ray.d))), lambda);
 }
 
 std::string ImageInfiniteLight::ToString() const {

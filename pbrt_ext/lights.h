@@ -1,4 +1,4 @@
-// Lights (pbrt-v4's src/pbrt/lights.h, reduced: RGB spectra, no media, no time, no textured or
+// Lights (pbrt-v4's src/pbrt/lights.h, reduced: no media, no time, no textured or
 // alpha-masked area lights, no portal or projection lights).
 //
 // Conventions, as in pbrt-v4:
@@ -13,6 +13,10 @@
 //     infinite light then samples nothing, and the image light samples a compensated density.
 //   - Phi() is the emitted power; distant and infinite lights need Preprocess(sceneBounds) first.
 //   - Values are never negative, NaN or infinite: images are clamped at zero.
+//   - Emission is spectral: each light samples its spectrum at the path's wavelengths. Spectra
+//     other than constants are tabulated at 1 nm when the light is made (pbrt-v4's
+//     DenselySampledSpectrum), so a lookup is one table read; an image light's texels are RGB
+//     illuminant spectra of the image's colour space.
 // Host code: area lights hold shapes that point into host meshes, the image light owns its image.
 #pragma once
 
@@ -20,6 +24,7 @@
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/ray.h"
 #include "pbrt_ext/shapes.h"
+#include "pbrt_ext/spectrum.h"
 #include "pbrt_ext/util/bounds.h"
 #include "pbrt_ext/util/image.h"
 #include "pbrt_ext/util/pstd.h"
@@ -50,18 +55,19 @@ struct LightLiSample {
 // Isotropic point source of intensity scale * I at the light-space origin.
 class PointLight {
   public:
-    PointLight(const Transform &worldFromLight, SampledSpectrum I, Float scale);
+    PointLight(const Transform &worldFromLight, Spectrum I, Float scale);
 
     LightType Type() const { return LightType::DeltaPosition; }
-    SampledSpectrum Phi() const;
+    SampledSpectrum Phi(const SampledWavelengths &lambda) const;
     pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
+                                           const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext, Vector3f, bool = false) const { return 0; }
     std::string ToString() const;
 
   private:
     Point3f pLight;
-    SampledSpectrum I;
+    Spectrum I;
     Float scale;
 };
 
@@ -70,22 +76,23 @@ class PointLight {
 // a scene's "coneangle" is totalWidth and "coneangle - conedelta" is falloffStart.
 class SpotLight {
   public:
-    SpotLight(const Transform &worldFromLight, SampledSpectrum I, Float scale, Float totalWidth,
+    SpotLight(const Transform &worldFromLight, Spectrum I, Float scale, Float totalWidth,
               Float falloffStart);
 
     LightType Type() const { return LightType::DeltaPosition; }
-    SampledSpectrum Phi() const;
+    SampledSpectrum Phi(const SampledWavelengths &lambda) const;
     pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
+                                           const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext, Vector3f, bool = false) const { return 0; }
     std::string ToString() const;
 
     // Intensity toward the light-space direction w (unit).
-    SampledSpectrum I(Vector3f w) const;
+    SampledSpectrum I(Vector3f w, const SampledWavelengths &lambda) const;
 
   private:
     Transform worldFromLight;
-    SampledSpectrum Iemit;
+    Spectrum Iemit;
     Float scale, cosFalloffStart, cosFalloffEnd;
 };
 
@@ -94,19 +101,20 @@ class SpotLight {
 // transform that sends +z to from - to).
 class DistantLight {
   public:
-    DistantLight(const Transform &worldFromLight, SampledSpectrum Lemit, Float scale);
+    DistantLight(const Transform &worldFromLight, Spectrum Lemit, Float scale);
 
     LightType Type() const { return LightType::DeltaDirection; }
     void Preprocess(const Bounds3f &sceneBounds);
-    SampledSpectrum Phi() const;
+    SampledSpectrum Phi(const SampledWavelengths &lambda) const;
     pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
+                                           const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext, Vector3f, bool = false) const { return 0; }
     std::string ToString() const;
 
   private:
     Vector3f wLight;  // unit, toward the light
-    SampledSpectrum Lemit;
+    Spectrum Lemit;
     Float scale;
     Float sceneRadius = 0;
 };
@@ -115,21 +123,23 @@ class DistantLight {
 // front is the side the shape's geometric normal n points to.
 class DiffuseAreaLight {
   public:
-    DiffuseAreaLight(Shape shape, SampledSpectrum Lemit, Float scale, bool twoSided);
+    DiffuseAreaLight(Shape shape, Spectrum Lemit, Float scale, bool twoSided);
 
     LightType Type() const { return LightType::Area; }
-    SampledSpectrum Phi() const;
+    SampledSpectrum Phi(const SampledWavelengths &lambda) const;
     pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
+                                           const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext ctx, Vector3f wi, bool allowIncompletePDF = false) const;
     // Radiance leaving the surface point p with normal n toward w.
-    SampledSpectrum L(Point3f p, Normal3f n, Point2f uv, Vector3f w) const;
+    SampledSpectrum L(Point3f p, Normal3f n, Point2f uv, Vector3f w,
+                      const SampledWavelengths &lambda) const;
     std::string ToString() const;
 
   private:
     Shape shape;
     Float area;
-    SampledSpectrum Lemit;
+    Spectrum Lemit;
     Float scale;
     bool twoSided;
 };
@@ -137,19 +147,20 @@ class DiffuseAreaLight {
 // Constant radiance scale * Lemit from every direction at infinity.
 class UniformInfiniteLight {
   public:
-    UniformInfiniteLight(SampledSpectrum Lemit, Float scale);
+    UniformInfiniteLight(Spectrum Lemit, Float scale);
 
     LightType Type() const { return LightType::Infinite; }
     void Preprocess(const Bounds3f &sceneBounds);
-    SampledSpectrum Phi() const;
+    SampledSpectrum Phi(const SampledWavelengths &lambda) const;
     pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
+                                           const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext ctx, Vector3f wi, bool allowIncompletePDF = false) const;
-    SampledSpectrum Le(const Ray &ray) const;
+    SampledSpectrum Le(const Ray &ray, const SampledWavelengths &lambda) const;
     std::string ToString() const;
 
   private:
-    SampledSpectrum Lemit;
+    Spectrum Lemit;
     Float scale;
     Point3f sceneCenter;
     Float sceneRadius = 0;
@@ -163,23 +174,27 @@ class UniformInfiniteLight {
 // square.
 class ImageInfiniteLight {
   public:
-    ImageInfiniteLight(const Transform &worldFromLight, Image image, Float scale);
+    // colorSpace: the image's (nullptr: sRGB).
+    ImageInfiniteLight(const Transform &worldFromLight, Image image, Float scale,
+                       const RGBColorSpace *colorSpace = nullptr);
 
     LightType Type() const { return LightType::Infinite; }
     void Preprocess(const Bounds3f &sceneBounds);
-    SampledSpectrum Phi() const;
+    SampledSpectrum Phi(const SampledWavelengths &lambda) const;
     pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
+                                           const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext ctx, Vector3f wi, bool allowIncompletePDF = false) const;
-    SampledSpectrum Le(const Ray &ray) const;
+    SampledSpectrum Le(const Ray &ray, const SampledWavelengths &lambda) const;
     std::string ToString() const;
 
   private:
     // Radiance at the point uv of the equal-area square.
-    SampledSpectrum ImageLe(Point2f uv) const;
+    SampledSpectrum ImageLe(Point2f uv, const SampledWavelengths &lambda) const;
 
     Transform worldFromLight;
     Image image;
+    const RGBColorSpace *colorSpace;
     Float scale;
     Point3f sceneCenter;
     Float sceneRadius = 0;
@@ -200,8 +215,8 @@ class Light {
     LightType Type() const {
         return std::visit([](const auto &l) { return l.Type(); }, light);
     }
-    SampledSpectrum Phi() const {
-        return std::visit([](const auto &l) { return l.Phi(); }, light);
+    SampledSpectrum Phi(const SampledWavelengths &lambda) const {
+        return std::visit([&](const auto &l) { return l.Phi(lambda); }, light);
     }
     void Preprocess(const Bounds3f &sceneBounds) {
         std::visit([&](auto &l) {
@@ -210,26 +225,28 @@ class Light {
         }, light);
     }
     pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
+                                           const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const {
-        return std::visit([&](const auto &l) { return l.SampleLi(ctx, u, allowIncompletePDF); },
-                          light);
+        return std::visit(
+            [&](const auto &l) { return l.SampleLi(ctx, u, lambda, allowIncompletePDF); }, light);
     }
     Float PDF_Li(LightSampleContext ctx, Vector3f wi, bool allowIncompletePDF = false) const {
         return std::visit([&](const auto &l) { return l.PDF_Li(ctx, wi, allowIncompletePDF); },
                           light);
     }
-    SampledSpectrum L(Point3f p, Normal3f n, Point2f uv, Vector3f w) const {
+    SampledSpectrum L(Point3f p, Normal3f n, Point2f uv, Vector3f w,
+                      const SampledWavelengths &lambda) const {
         return std::visit([&](const auto &l) {
-            if constexpr (requires { l.L(p, n, uv, w); })
-                return l.L(p, n, uv, w);
+            if constexpr (requires { l.L(p, n, uv, w, lambda); })
+                return l.L(p, n, uv, w, lambda);
             else
                 return SampledSpectrum(0.f);
         }, light);
     }
-    SampledSpectrum Le(const Ray &ray) const {
+    SampledSpectrum Le(const Ray &ray, const SampledWavelengths &lambda) const {
         return std::visit([&](const auto &l) {
-            if constexpr (requires { l.Le(ray); })
-                return l.Le(ray);
+            if constexpr (requires { l.Le(ray, lambda); })
+                return l.Le(ray, lambda);
             else
                 return SampledSpectrum(0.f);
         }, light);

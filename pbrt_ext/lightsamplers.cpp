@@ -25,9 +25,11 @@ std::string UniformLightSampler::ToString() const {
 namespace {
 
 std::vector<Float> LightPowers(pstd::span<const Light> lights) {
+    // pbrt-v4's: the power at four visible wavelengths, weighted as the film weights them.
+    SampledWavelengths lambda = SampledWavelengths::SampleVisible(0.5f);
     std::vector<Float> power(lights.size());
     for (size_t i = 0; i < lights.size(); ++i)
-        power[i] = std::max<Float>(lights[i].Phi().Average(), 0);
+        power[i] = std::max<Float>(SafeDiv(lights[i].Phi(lambda), lambda.PDF()).Average(), 0);
     if (std::all_of(power.begin(), power.end(), [](Float p) { return p == 0; }))
         std::fill(power.begin(), power.end(), Float(1));
     return power;

@@ -22,60 +22,91 @@ TrowbridgeReitzDistribution Microfacets(const FloatTexture &uRoughness,
     return TrowbridgeReitzDistribution(u, v);
 }
 
-SampledSpectrum Reflectance(const SpectrumTexture &texture, const TextureEvalContext &ctx) {
-    return Clamp(texture.Evaluate(ctx), Float(0), Float(1));
+SampledSpectrum Reflectance(const SpectrumTexture &texture, const TextureEvalContext &ctx,
+                            const SampledWavelengths &lambda) {
+    return Clamp(texture.Evaluate(ctx, lambda), Float(0), Float(1));
+}
+
+// A dielectric's index at the first wavelength (pbrt-v4): one that varies with wavelength
+// sends each wavelength its own way, so the others stop contributing.
+Float SampledEta(const Spectrum &eta, SampledWavelengths &lambda) {
+    Float sampled = eta(lambda[0]);
+    if (!eta.IsConstant()) lambda.TerminateSecondary();
+    return sampled == 0 ? 1 : sampled;
+}
+
+// A conductor's eta and k at lambda, from its reflectance where one is given.
+void ConductorSpectra(const ConductorMaterial &m, const TextureEvalContext &ctx,
+                      const SampledWavelengths &lambda, SampledSpectrum *eta, SampledSpectrum *k) {
+    if (!m.reflectance) {
+        *eta = m.eta.Evaluate(ctx, lambda);
+        *k = m.k.Evaluate(ctx, lambda);
+        return;
+    }
+    SampledSpectrum r = Clamp(m.reflectance->Evaluate(ctx, lambda), Float(0), Float(0.9999f));  // r = 1: k = inf
+    *eta = SampledSpectrum(1.f);
+    *k = 2 * Sqrt(r) / Sqrt(ClampZero(SampledSpectrum(1.f) - r));
 }
 
 }  // namespace
 
-BxDF DiffuseMaterial::GetBxDF(const TextureEvalContext &ctx) const {
-    return DiffuseBxDF(Reflectance(reflectance, ctx));
+BxDF DiffuseMaterial::GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const {
+    return DiffuseBxDF(Reflectance(reflectance, ctx, lambda));
 }
 
-
-BxDF ConductorMaterial::GetBxDF(const TextureEvalContext &ctx) const {
-    return ConductorBxDF(Microfacets(uRoughness, vRoughness, remapRoughness, ctx), eta.Evaluate(ctx),
-                         k.Evaluate(ctx));
+BxDF ConductorMaterial::GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const {
+    SampledSpectrum etas, ks;
+    ConductorSpectra(*this, ctx, lambda, &etas, &ks);
+    return ConductorBxDF(Microfacets(uRoughness, vRoughness, remapRoughness, ctx), etas, ks);
 }
 
-BxDF DielectricMaterial::GetBxDF(const TextureEvalContext &ctx) const {
-    return DielectricBxDF(eta, Microfacets(uRoughness, vRoughness, remapRoughness, ctx));
+BxDF DielectricMaterial::GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const {
+    return DielectricBxDF(SampledEta(eta, lambda),
+                          Microfacets(uRoughness, vRoughness, remapRoughness, ctx));
 }
 
-BxDF ThinDielectricMaterial::GetBxDF(const TextureEvalContext &) const {
-    return ThinDielectricBxDF(eta);
+BxDF ThinDielectricMaterial::GetBxDF(const TextureEvalContext &, SampledWavelengths &lambda) const {
+    return ThinDielectricBxDF(SampledEta(eta, lambda));
 }
 
-BxDF DiffuseTransmissionMaterial::GetBxDF(const TextureEvalContext &ctx) const {
-    return DiffuseTransmissionBxDF(Reflectance(reflectance, ctx) * scale,
-                                   Reflectance(transmittance, ctx) * scale);
+BxDF DiffuseTransmissionMaterial::GetBxDF(const TextureEvalContext &ctx,
+                                          SampledWavelengths &lambda) const {
+    return DiffuseTransmissionBxDF(Reflectance(reflectance, ctx, lambda) * scale,
+                                   Reflectance(transmittance, ctx, lambda) * scale);
 }
 
-BxDF CoatedDiffuseMaterial::GetBxDF(const TextureEvalContext &ctx) const {
-    return CoatedDiffuseBxDF(DielectricBxDF(eta, Microfacets(uRoughness, vRoughness,
-                                                             remapRoughness, ctx)),
-                             DiffuseBxDF(Reflectance(reflectance, ctx)),
-                             layer.thickness.Evaluate(ctx), layer.albedo.Evaluate(ctx),
-                             layer.g.Evaluate(ctx), layer.maxDepth, layer.nSamples);
+BxDF CoatedDiffuseMaterial::GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const {
+    SampledSpectrum r = Reflectance(reflectance, ctx, lambda);
+    DielectricBxDF coat(SampledEta(eta, lambda),
+                        Microfacets(uRoughness, vRoughness, remapRoughness, ctx));
+    return CoatedDiffuseBxDF(coat, DiffuseBxDF(r), layer.thickness.Evaluate(ctx),
+                             Reflectance(layer.albedo, ctx, lambda), layer.g.Evaluate(ctx),
+                             layer.maxDepth, layer.nSamples);
 }
 
-BxDF CoatedConductorMaterial::GetBxDF(const TextureEvalContext &ctx) const {
-    DielectricBxDF coat(interfaceEta, Microfacets(interfaceURoughness, interfaceVRoughness,
-                                                  remapRoughness, ctx));
+// pbrt-v4 gives the conductor under the coat its index relative to the coat's.
+BxDF CoatedConductorMaterial::GetBxDF(const TextureEvalContext &ctx,
+                                      SampledWavelengths &lambda) const {
+    Float ieta = SampledEta(interfaceEta, lambda);
+    DielectricBxDF coat(ieta, Microfacets(interfaceURoughness, interfaceVRoughness,
+                                          remapRoughness, ctx));
+    SampledSpectrum ce, ck;
+    ConductorSpectra(conductor, ctx, lambda, &ce, &ck);
     ConductorBxDF base(Microfacets(conductor.uRoughness, conductor.vRoughness,
                                    conductor.remapRoughness, ctx),
-                       conductor.eta.Evaluate(ctx), conductor.k.Evaluate(ctx));
-    return CoatedConductorBxDF(coat, base, layer.thickness.Evaluate(ctx), layer.albedo.Evaluate(ctx),
-                               layer.g.Evaluate(ctx), layer.maxDepth, layer.nSamples);
+                       ce / ieta, ck / ieta);
+    return CoatedConductorBxDF(coat, base, layer.thickness.Evaluate(ctx),
+                               Reflectance(layer.albedo, ctx, lambda), layer.g.Evaluate(ctx),
+                               layer.maxDepth, layer.nSamples);
 }
 
-BxDF FabricMaterial::GetBxDF(const TextureEvalContext &ctx) const {
-    FabricBxDF fabric(Reflectance(reflectance, ctx), roughness.Evaluate(ctx),
+BxDF FabricMaterial::GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const {
+    FabricBxDF fabric(Reflectance(reflectance, ctx, lambda), roughness.Evaluate(ctx),
                       FabricBxDF::ThreadDirection(threadAngle, threadElevation), sampling,
                       normalization);
     if (!diffuse)
         return fabric;
-    return FabricDiffuseBxDF(fabric, Reflectance(*diffuse, ctx));
+    return FabricDiffuseBxDF(fabric, Reflectance(*diffuse, ctx, lambda));
 }
 
 namespace {
@@ -113,7 +144,7 @@ ShadingFrame BumpMap(const FloatTexture &displacement, const SurfaceInteraction 
 // (dpdu, n); t is flipped so that the file's top row is v = 1.
 ShadingFrame NormalMap(const Image &image, const SurfaceInteraction &si) {
     Point2f st(si.uv[0], 1 - si.uv[1]);
-    SampledSpectrum rgb = image.Bilerp(st, WrapMode::Repeat);
+    RGB rgb = image.Bilerp(st, WrapMode::Repeat);
     Vector3f local = Normalize(Vector3f(2 * rgb[0] - 1, 2 * rgb[1] - 1, 2 * rgb[2] - 1));
     Vector3f x = si.shading.dpdu - Dot(si.shading.dpdu, Vector3f(si.shading.n)) * Vector3f(si.shading.n);
     if (LengthSquared(x) == 0 || !IsFinite(local.x))
@@ -125,9 +156,9 @@ ShadingFrame NormalMap(const Image &image, const SurfaceInteraction &si) {
 
 }  // namespace
 
-BSDF Material::GetBSDF(const SurfaceInteraction &si) const {
+BSDF Material::GetBSDF(const SurfaceInteraction &si, SampledWavelengths &lambda) const {
     TextureEvalContext ctx(si);
-    BxDF bxdf = std::visit([&](const auto &m) { return m.GetBxDF(ctx); }, material);
+    BxDF bxdf = std::visit([&](const auto &m) { return m.GetBxDF(ctx, lambda); }, material);
     ShadingFrame frame{si.shading.n, si.shading.dpdu};
     if (displacement)
         frame = BumpMap(*displacement, si);

@@ -1,5 +1,7 @@
-// Materials: evaluate their textures at a hit and return a BxDF by value (pbrt-v4's
-// src/pbrt/materials.h). The closed set is listed at the end; the builder creates only materials that
+// Materials: evaluate their textures at a hit and the path's wavelengths and return a BxDF by
+// value (pbrt-v4's src/pbrt/materials.h). A dielectric whose index varies with wavelength
+// terminates the path's secondary wavelengths, as in pbrt-v4: refraction then sends each
+// wavelength its own way. The closed set is listed at the end; the builder creates only materials that
 // some shape references.
 #pragma once
 
@@ -16,75 +18,78 @@
 namespace pbrt {
 
 struct DiffuseMaterial {
-    SpectrumTexture reflectance = SampledSpectrum(0.5f);
+    SpectrumTexture reflectance = Spectrum(0.5f);
 
-    BxDF GetBxDF(const TextureEvalContext &ctx) const;
+    BxDF GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const;
 };
 
-// Roughness is TR alpha directly, or pbrt-v4's remapping from a perceptual roughness.
+// Roughness is TR alpha directly, or pbrt-v4's remapping from a perceptual roughness. Copper
+// by default, as pbrt-v4. A reflectance, when given, replaces eta and k (pbrt-v4: k = 2 sqrt(r)
+// / sqrt(1 - r), eta = 1).
 struct ConductorMaterial {
-    SpectrumTexture eta = SampledSpectrum(0.2f, 0.92f, 1.1f);  // copper-like RGB default
-    SpectrumTexture k = SampledSpectrum(3.9f, 2.45f, 2.14f);
+    SpectrumTexture eta = *GetNamedSpectrum("metal-Cu-eta");
+    SpectrumTexture k = *GetNamedSpectrum("metal-Cu-k");
+    std::optional<SpectrumTexture> reflectance;
     FloatTexture uRoughness = 0, vRoughness = 0;
     bool remapRoughness = true;
 
-    BxDF GetBxDF(const TextureEvalContext &ctx) const;
+    BxDF GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const;
 };
 
-// Roughness as for ConductorMaterial; eta is a single index (RGB rendering has no dispersion).
+// Roughness as for ConductorMaterial; an eta that is not constant disperses.
 struct DielectricMaterial {
-    Float eta = 1.5f;
+    Spectrum eta = Spectrum(1.5f);
     FloatTexture uRoughness = 0, vRoughness = 0;
     bool remapRoughness = true;
 
-    BxDF GetBxDF(const TextureEvalContext &ctx) const;
+    BxDF GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const;
 };
 
 struct ThinDielectricMaterial {
-    Float eta = 1.5f;
+    Spectrum eta = Spectrum(1.5f);
 
-    BxDF GetBxDF(const TextureEvalContext &ctx) const;
+    BxDF GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const;
 };
 
 struct DiffuseTransmissionMaterial {
-    SpectrumTexture reflectance = SampledSpectrum(0.25f), transmittance = SampledSpectrum(0.25f);
+    SpectrumTexture reflectance = Spectrum(0.25f), transmittance = Spectrum(0.25f);
     Float scale = 1;
 
-    BxDF GetBxDF(const TextureEvalContext &ctx) const;
+    BxDF GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const;
 };
 
 // The parameters of pbrt-v4's layered materials: a medium of the given thickness, albedo and
 // Henyey-Greenstein g between the interfaces, walked with at most maxDepth bounces, nSamples times.
 struct LayerParameters {
     FloatTexture thickness = 0.01f;
-    SpectrumTexture albedo = SampledSpectrum(0.f);
+    SpectrumTexture albedo = Spectrum(0.f);
     FloatTexture g = 0;
     int maxDepth = 10, nSamples = 1;
 };
 
 struct CoatedDiffuseMaterial {
-    SpectrumTexture reflectance = SampledSpectrum(0.5f);
+    SpectrumTexture reflectance = Spectrum(0.5f);
     FloatTexture uRoughness = 0, vRoughness = 0;
-    Float eta = 1.5f;
+    Spectrum eta = Spectrum(1.5f);
     bool remapRoughness = true;
     LayerParameters layer;
 
-    BxDF GetBxDF(const TextureEvalContext &ctx) const;
+    BxDF GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const;
 };
 
 struct CoatedConductorMaterial {
     FloatTexture interfaceURoughness = 0, interfaceVRoughness = 0;
-    Float interfaceEta = 1.5f;
+    Spectrum interfaceEta = Spectrum(1.5f);
     ConductorMaterial conductor;
     bool remapRoughness = true;
     LayerParameters layer;
 
-    BxDF GetBxDF(const TextureEvalContext &ctx) const;
+    BxDF GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const;
 };
 
 // Our extension: the DreamWorks fabric lobe (pbrt_ext/bxdfs/fabric.h).
 struct FabricMaterial {
-    SpectrumTexture reflectance = SampledSpectrum(0.5f);
+    SpectrumTexture reflectance = Spectrum(0.5f);
     FloatTexture roughness = 0.5f;
     Float threadAngle = 0, threadElevation = 0;  // degrees: about N from dpdu, then toward N
     FabricSampling sampling = FabricSampling::Best;
@@ -93,7 +98,7 @@ struct FabricMaterial {
     // (pbrt_ext/bxdfs/fabricdiffuse.h).
     std::optional<SpectrumTexture> diffuse;
 
-    BxDF GetBxDF(const TextureEvalContext &ctx) const;
+    BxDF GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const;
 };
 
 // pbrt-v4's stochastic mix of two materials: at each hit one of them is chosen, the second with
@@ -105,7 +110,9 @@ struct MixMaterial {
 
     int Choose(const SurfaceInteraction &si) const;
     // Never reached: Scene::GetBSDF resolves mixes first (kept for the closed dispatch).
-    BxDF GetBxDF(const TextureEvalContext &) const { return DiffuseBxDF(SampledSpectrum(0.f)); }
+    BxDF GetBxDF(const TextureEvalContext &, SampledWavelengths &) const {
+        return DiffuseBxDF(SampledSpectrum(0.f));
+    }
 };
 
 class Material {
@@ -117,8 +124,9 @@ class Material {
     template <typename T>
     Material(T material) : material(std::move(material)) {}
 
-    // The BSDF at a hit, in the hit's shading frame, perturbed by the bump or normal map if any.
-    BSDF GetBSDF(const SurfaceInteraction &si) const;
+    // The BSDF at a hit for the path's wavelengths, in the hit's shading frame, perturbed by the
+    // bump or normal map if any. Terminates lambda's secondary wavelengths where it disperses.
+    BSDF GetBSDF(const SurfaceInteraction &si, SampledWavelengths &lambda) const;
 
     const MixMaterial *AsMix() const { return std::get_if<MixMaterial>(&material); }
 

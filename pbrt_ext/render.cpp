@@ -74,16 +74,18 @@ void RenderTile(Scene &scene, const PathIntegrator &integrator, const Bounds2i &
     for (Point2i p : tile)
         for (int i = first; i < last; ++i) {
             sampler.StartPixelSample(p, i);
+            // pbrt-v4's order: the wavelengths take the first dimension, then the camera sample.
+            SampledWavelengths lambda = scene.film.SampleWavelengths(sampler.Get1D());
             CameraSample cs = GetCameraSample(sampler, p, scene.film.GetFilter());
             pstd::optional<CameraRay> cr = scene.camera.GenerateRay(cs);
             SampledSpectrum L(0.f);
             if (cr)
-                L = cr->weight * integrator.Li(cr->ray, sampler, counts.rays);
+                L = cr->weight * integrator.Li(cr->ray, lambda, sampler, counts.rays);
             if (!IsValidRadiance(L)) {
                 ++counts.discarded;
                 continue;
             }
-            scene.film.AddSample(p, L, cs.filterWeight);
+            scene.film.AddSample(p, L, lambda, cs.filterWeight);
         }
 }
 

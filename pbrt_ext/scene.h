@@ -52,13 +52,13 @@ class Scene {
         return aggregate.IntersectP(ray, tMax);
     }
     // The BSDF at a hit, mixes resolved; none for an interface (a surface that only bounds media).
-    std::optional<BSDF> GetBSDF(const SurfaceInteraction &si) const {
+    std::optional<BSDF> GetBSDF(const SurfaceInteraction &si, SampledWavelengths &lambda) const {
         int index = si.materialIndex;
         while (index >= 0)
             if (const MixMaterial *mix = materials[index].AsMix())
                 index = mix->Choose(si);
             else
-                return materials[index].GetBSDF(si);
+                return materials[index].GetBSDF(si, lambda);
         return std::nullopt;
     }
 
@@ -75,7 +75,7 @@ class Scene {
 
 // Emission of an area light attached to a shape (pbrt-v4's AreaLightSource "diffuse").
 struct AreaLightDescription {
-    SampledSpectrum L = SampledSpectrum(1.f);
+    Spectrum L = Spectrum(1.f);
     Float scale = 1;
     bool twoSided = false;
 };

@@ -112,7 +112,8 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
     const std::string folder = std::filesystem::absolute(filename).parent_path().string();
     WarnAboutOptions(scene);
 
-    RGBFilm film = CreateFilm(scene.film, CreateFilter(scene.filter), overrides);
+    RGBFilm film = CreateFilm(scene.film, ExposureTime(scene.camera), CreateFilter(scene.filter),
+                              overrides);
     Camera camera = CreateCamera(scene.camera, film);
     Sampler sampler = CreateSampler(scene.sampler, film.FullResolution(), overrides);
     std::string lightSampler;

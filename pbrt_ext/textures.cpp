@@ -1,5 +1,8 @@
 #include "pbrt_ext/textures.h"
 
+#include "pbrt_ext/util/colorspace.h"
+
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -7,7 +10,7 @@
 
 namespace pbrt {
 
-SampledSpectrum ImageTextureBase::ScaledLookup(const TextureEvalContext &ctx) const {
+RGB ImageTextureBase::ScaledLookup(const TextureEvalContext &ctx) const {
     Point2f st = mapping.Map(ctx);
     st[1] = 1 - st[1];
     if (filter == ImageFilter::Bilinear) return scale * image->Bilerp(st, wrapMode);
@@ -22,10 +25,22 @@ Float FloatImageTexture::Evaluate(const TextureEvalContext &ctx) const {
     return invert ? std::max<Float>(0, 1 - v) : v;
 }
 
-SampledSpectrum SpectrumImageTexture::Evaluate(const TextureEvalContext &ctx) const {
-    SampledSpectrum rgb = ScaledLookup(ctx);
-    rgb = ClampZero(invert ? 1 - rgb : rgb);
-    return kind == SpectrumKind::Reflectance ? Clamp(rgb, Float(0), Float(1)) : rgb;
+SampledSpectrum SpectrumImageTexture::Evaluate(const TextureEvalContext &ctx,
+                                               const SampledWavelengths &lambda) const {
+    RGB rgb = ScaledLookup(ctx);
+    if (invert) rgb = RGB(1 - rgb.r, 1 - rgb.g, 1 - rgb.b);
+    rgb = RGB(std::max<Float>(0, rgb.r), std::max<Float>(0, rgb.g), std::max<Float>(0, rgb.b));
+    const RGBColorSpace &cs = colorSpace ? *colorSpace : RGBColorSpace::sRGB();
+    switch (type) {
+    case SpectrumType::Albedo:
+        rgb = RGB(std::min<Float>(1, rgb.r), std::min<Float>(1, rgb.g), std::min<Float>(1, rgb.b));
+        return RGBAlbedoSpectrum(cs, rgb).Sample(lambda);
+    case SpectrumType::Unbounded:
+        return RGBUnboundedSpectrum(cs, rgb).Sample(lambda);
+    case SpectrumType::Illuminant:
+        return RGBIlluminantSpectrum(cs, rgb).Sample(lambda);
+    }
+    return SampledSpectrum(0.f);
 }
 
 namespace {

@@ -13,7 +13,7 @@
 #pragma once
 
 #include "pbrt_ext/interaction.h"
-#include "pbrt_ext/spectra.h"
+#include "pbrt_ext/spectrum.h"
 #include "pbrt_ext/util/image.h"
 #include "pbrt_ext/util/spectrum.h"
 
@@ -52,11 +52,15 @@ struct FloatConstantTexture {
 };
 
 struct SpectrumConstantTexture {
-    SampledSpectrum value;
-    SampledSpectrum Evaluate(const TextureEvalContext &) const { return value; }
+    Spectrum value;
+    SampledSpectrum Evaluate(const TextureEvalContext &, const SampledWavelengths &lambda) const {
+        return value.Sample(lambda);
+    }
 };
 
 // ---- Scale, mix, checkerboard (one definition for both value types) -------------------------
+// A spectrum texture's Evaluate also takes the path's wavelengths; the combining textures pass
+// whatever follows the context (nothing, or the wavelengths) on to the textures they combine.
 
 namespace detail {
 
@@ -64,7 +68,8 @@ namespace detail {
 template <typename Tex>
 struct ScaledTexture {
     ScaledTexture(Tex tex, FloatTexture scale);
-    auto Evaluate(const TextureEvalContext &ctx) const;
+    template <typename... Lambda>
+    auto Evaluate(const TextureEvalContext &ctx, const Lambda &...lambda) const;
     std::shared_ptr<const Tex> tex;
     std::shared_ptr<const FloatTexture> scale;
 };
@@ -73,7 +78,8 @@ struct ScaledTexture {
 template <typename Tex>
 struct MixTexture {
     MixTexture(Tex tex1, Tex tex2, FloatTexture amount);
-    auto Evaluate(const TextureEvalContext &ctx) const;
+    template <typename... Lambda>
+    auto Evaluate(const TextureEvalContext &ctx, const Lambda &...lambda) const;
     std::shared_ptr<const Tex> tex1, tex2;
     std::shared_ptr<const FloatTexture> amount;
 };
@@ -82,7 +88,8 @@ struct MixTexture {
 template <typename Tex>
 struct CheckerboardTexture {
     CheckerboardTexture(UVMapping mapping, Tex tex1, Tex tex2);
-    auto Evaluate(const TextureEvalContext &ctx) const;
+    template <typename... Lambda>
+    auto Evaluate(const TextureEvalContext &ctx, const Lambda &...lambda) const;
     UVMapping mapping;
     std::shared_ptr<const Tex> tex1, tex2;
 };
@@ -119,7 +126,7 @@ struct ImageTextureBase {
 
     // scale times the filtered RGB at the mapped point; t is flipped so that t = 0 is the
     // bottom row of the file, as in pbrt-v4.
-    SampledSpectrum ScaledLookup(const TextureEvalContext &ctx) const;
+    RGB ScaledLookup(const TextureEvalContext &ctx) const;
 };
 
 // The average of the channels, as pbrt-v4 reads an RGB image as a float texture.
@@ -127,10 +134,13 @@ struct FloatImageTexture : ImageTextureBase {
     Float Evaluate(const TextureEvalContext &ctx) const;
 };
 
-// A reflectance image is clamped to [0, 1]; other kinds to >= 0 (pbrt-v4's RGB spectra).
+// The texel's RGB, clamped to >= 0 (and to [0, 1] for an albedo), becomes the RGB spectrum of
+// the texture's type in the colour space the image is in, at lookup (pbrt-v4's
+// SpectrumImageTexture).
 struct SpectrumImageTexture : ImageTextureBase {
-    SpectrumKind kind = SpectrumKind::Reflectance;
-    SampledSpectrum Evaluate(const TextureEvalContext &ctx) const;
+    SpectrumType type = SpectrumType::Albedo;
+    const RGBColorSpace *colorSpace = nullptr;  // nullptr: sRGB
+    SampledSpectrum Evaluate(const TextureEvalContext &ctx, const SampledWavelengths &lambda) const;
 };
 
 // Images decoded for textures, by file name and encoding, for the life of the program (pbrt-v4
@@ -166,13 +176,12 @@ class SpectrumTexture {
   public:
     using Variant = std::variant<SpectrumConstantTexture, SpectrumScaledTexture, SpectrumMixTexture,
                                  SpectrumCheckerboardTexture, SpectrumImageTexture>;
-    SpectrumTexture(SampledSpectrum value = SampledSpectrum(0.f))
-        : texture(SpectrumConstantTexture{value}) {}
+    SpectrumTexture(Spectrum value = Spectrum(0.f)) : texture(SpectrumConstantTexture{std::move(value)}) {}
     template <typename T>
         requires std::is_constructible_v<Variant, T>
     SpectrumTexture(T texture) : texture(std::move(texture)) {}
 
-    SampledSpectrum Evaluate(const TextureEvalContext &ctx) const;
+    SampledSpectrum Evaluate(const TextureEvalContext &ctx, const SampledWavelengths &lambda) const;
 
   private:
     Variant texture;
@@ -188,11 +197,12 @@ ScaledTexture<Tex>::ScaledTexture(Tex tex, FloatTexture scale)
       scale(std::make_shared<const FloatTexture>(std::move(scale))) {}
 
 template <typename Tex>
-auto ScaledTexture<Tex>::Evaluate(const TextureEvalContext &ctx) const {
+template <typename... Lambda>
+auto ScaledTexture<Tex>::Evaluate(const TextureEvalContext &ctx, const Lambda &...lambda) const {
     Float sc = scale->Evaluate(ctx);
-    using Value = decltype(tex->Evaluate(ctx));
+    using Value = decltype(tex->Evaluate(ctx, lambda...));
     if (sc == 0) return Value(0.f);
-    return tex->Evaluate(ctx) * sc;
+    return tex->Evaluate(ctx, lambda...) * sc;
 }
 
 template <typename Tex>
@@ -202,17 +212,18 @@ MixTexture<Tex>::MixTexture(Tex tex1, Tex tex2, FloatTexture amount)
       amount(std::make_shared<const FloatTexture>(std::move(amount))) {}
 
 // Shared by mix and checkerboard: (1 - w) a + w b, evaluating only what has weight.
-template <typename Tex>
-auto Blend(Float w, const Tex &a, const Tex &b, const TextureEvalContext &ctx) {
-    using Value = decltype(a.Evaluate(ctx));
-    Value va = (w != 1) ? a.Evaluate(ctx) : Value(0.f);
-    Value vb = (w != 0) ? b.Evaluate(ctx) : Value(0.f);
+template <typename Tex, typename... Lambda>
+auto Blend(Float w, const Tex &a, const Tex &b, const TextureEvalContext &ctx, const Lambda &...lambda) {
+    using Value = decltype(a.Evaluate(ctx, lambda...));
+    Value va = (w != 1) ? a.Evaluate(ctx, lambda...) : Value(0.f);
+    Value vb = (w != 0) ? b.Evaluate(ctx, lambda...) : Value(0.f);
     return (1 - w) * va + w * vb;
 }
 
 template <typename Tex>
-auto MixTexture<Tex>::Evaluate(const TextureEvalContext &ctx) const {
-    return Blend(amount->Evaluate(ctx), *tex1, *tex2, ctx);
+template <typename... Lambda>
+auto MixTexture<Tex>::Evaluate(const TextureEvalContext &ctx, const Lambda &...lambda) const {
+    return Blend(amount->Evaluate(ctx), *tex1, *tex2, ctx, lambda...);
 }
 
 template <typename Tex>
@@ -222,8 +233,9 @@ CheckerboardTexture<Tex>::CheckerboardTexture(UVMapping mapping, Tex tex1, Tex t
       tex2(std::make_shared<const Tex>(std::move(tex2))) {}
 
 template <typename Tex>
-auto CheckerboardTexture<Tex>::Evaluate(const TextureEvalContext &ctx) const {
-    return Blend(Checkerboard(mapping, ctx), *tex1, *tex2, ctx);
+template <typename... Lambda>
+auto CheckerboardTexture<Tex>::Evaluate(const TextureEvalContext &ctx, const Lambda &...lambda) const {
+    return Blend(Checkerboard(mapping, ctx), *tex1, *tex2, ctx, lambda...);
 }
 
 }  // namespace detail
@@ -232,8 +244,9 @@ inline Float FloatTexture::Evaluate(const TextureEvalContext &ctx) const {
     return std::visit([&](const auto &t) { return t.Evaluate(ctx); }, texture);
 }
 
-inline SampledSpectrum SpectrumTexture::Evaluate(const TextureEvalContext &ctx) const {
-    return std::visit([&](const auto &t) { return t.Evaluate(ctx); }, texture);
+inline SampledSpectrum SpectrumTexture::Evaluate(const TextureEvalContext &ctx,
+                                                 const SampledWavelengths &lambda) const {
+    return std::visit([&](const auto &t) { return t.Evaluate(ctx, lambda); }, texture);
 }
 
 }  // namespace pbrt

@@ -19,8 +19,9 @@ namespace {
 
 // Chi-square tests in this file (Šidák correction), α = 0.01 overall, 1e6 samples each.
 constexpr int kChi2Tests = 3 * 4 + 3;
-// Copper-like RGB eta and k; the furnace bound holds for any conductor.
-const SampledSpectrum kEta(0.27f, 0.68f, 1.22f), kK(3.6f, 2.6f, 2.3f);
+// Copper-like eta and k at four wavelengths (about 450, 550, 650 and 700 nm); the furnace bound
+// holds for any conductor.
+const SampledSpectrum kEta(1.22f, 0.95f, 0.27f, 0.21f), kK(2.4f, 2.6f, 3.6f, 4.2f);
 
 ConductorBxDF Conductor(Float ax, Float ay) {
     return ConductorBxDF(TrowbridgeReitzDistribution(ax, ay), kEta, kK);
@@ -63,14 +64,15 @@ double Albedo(const ConductorBxDF &bxdf, Vector3f wo, int channel) {
 
 TEST(DiffuseBxDF, SamplingFollowsItsDensity) { ExpectChi2(DiffuseBxDF(SampledSpectrum(0.7f))); }
 
-TEST(DiffuseBxDF, Properties) { ExpectProperties(DiffuseBxDF(SampledSpectrum(0.3f, 0.5f, 0.9f))); }
+TEST(DiffuseBxDF, Properties) { ExpectProperties(DiffuseBxDF(SampledSpectrum(0.3f, 0.5f, 0.9f, 0.7f))); }
 
 TEST(DiffuseBxDF, AlbedoIsReflectance) {
-    DiffuseBxDF bxdf(SampledSpectrum(0.25f, 0.5f, 1));
+    const double expected[NSpectrumSamples] = {0.25, 0.5, 1.0, 0.75};
+    DiffuseBxDF bxdf(SampledSpectrum(0.25f, 0.5f, 1, 0.75f));
     for (Vector3f wo : Outgoing())
-        for (int c = 0; c < 3; ++c)
+        for (int c = 0; c < NSpectrumSamples; ++c)
             EXPECT_NEAR(DirectionalAlbedo(bxdf, wo, Frame::FromZ(Vector3f(0, 0, 1)), {0.0}, 64, 64, c),
-                        (c == 0 ? 0.25 : c == 1 ? 0.5 : 1.0), 1e-5);
+                        expected[c], 1e-5);
 }
 
 TEST(ConductorBxDF, SamplingFollowsItsDensity) {
@@ -87,7 +89,7 @@ TEST(ConductorBxDF, AlbedoNeverExceedsOne) {
     // Single-scattering microfacets lose energy; with |F| <= 1 the albedo stays below 1 (+ quadrature).
     for (Float alpha : {0.1f, 0.3f, 0.8f})
         for (Vector3f wo : Outgoing())
-            for (int c = 0; c < 3; ++c)
+            for (int c = 0; c < NSpectrumSamples; ++c)
                 EXPECT_LE(Albedo(Conductor(alpha, alpha), wo, c), 1 + 1e-3)
                     << "alpha " << alpha << " channel " << c;
 }

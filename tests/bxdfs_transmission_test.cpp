@@ -381,13 +381,15 @@ TEST(ThinDielectricBxDF, HonoursSampleFlagsAndRegularizeKeepsIt) {
 // Diffuse transmission
 
 TEST(DiffuseTransmissionBxDF, SamplingFollowsItsDensity) {
-    DiffuseTransmissionBxDF leaf(SampledSpectrum(0.2f, 0.5f, 0.3f), SampledSpectrum(0.6f, 0.3f, 0.1f));
+    DiffuseTransmissionBxDF leaf(SampledSpectrum(0.2f, 0.5f, 0.3f, 0.4f),
+                                 SampledSpectrum(0.6f, 0.3f, 0.1f, 0.2f));
     ExpectChi2(leaf, {Outgoing()[1], Outgoing()[3]});
     ExpectChi2(leaf, {Outgoing()[2]}, BxDFReflTransFlags::Transmission);
 }
 
 TEST(DiffuseTransmissionBxDF, Properties) {
-    DiffuseTransmissionBxDF leaf(SampledSpectrum(0.2f, 0.5f, 0.3f), SampledSpectrum(0.6f, 0.3f, 0.1f));
+    DiffuseTransmissionBxDF leaf(SampledSpectrum(0.2f, 0.5f, 0.3f, 0.4f),
+                                 SampledSpectrum(0.6f, 0.3f, 0.1f, 0.2f));
     ExpectProperties(leaf);
     // Nothing bends or changes medium: transmission is reciprocal too.
     RNG rng(5);
@@ -400,11 +402,12 @@ TEST(DiffuseTransmissionBxDF, Properties) {
 }
 
 TEST(DiffuseTransmissionBxDF, AlbedoIsReflectancePlusTransmittance) {
-    DiffuseTransmissionBxDF leaf(SampledSpectrum(0.25f, 0.5f, 0.1f), SampledSpectrum(0.5f, 0.25f, 0.9f));
+    DiffuseTransmissionBxDF leaf(SampledSpectrum(0.25f, 0.5f, 0.1f, 0.4f),
+                                 SampledSpectrum(0.5f, 0.25f, 0.9f, 0.2f));
     RhoSamples in = MakeRhoSamples(1 << 16, 8);
-    const double expected[3] = {0.75, 0.75, 1.0};
+    const double expected[NSpectrumSamples] = {0.75, 0.75, 1.0, 0.6};
     for (Vector3f wo : Outgoing())
-        for (int c = 0; c < 3; ++c) {
+        for (int c = 0; c < NSpectrumSamples; ++c) {
             EXPECT_NEAR(DirectionalAlbedo(leaf, wo, Frame::FromZ(Vector3f(0, 0, 1)), {0.0}, 64, 64, c),
                         expected[c], 1e-5);
             // Sampling picks a side by the largest channel, so other channels' weights

@@ -37,15 +37,15 @@ struct Case {
     Float woPolar, woAzimuth;  // degrees
 };
 
-const SampledSpectrum kBright(0.9f, 0.8f, 0.7f), kDark(0.08f, 0.05f, 0.02f);
+const SampledSpectrum kBright(0.9f, 0.8f, 0.7f, 0.6f), kDark(0.08f, 0.05f, 0.02f, 0.03f);
 
 // n 1/5/30, elevations 0/45, both normalizations, dark and bright colors and bases; wo from the
 // normal to grazing and below the surface.
 const Case kCases[] = {
-    {1, 0, FabricNormalization::Paper, kBright, SampledSpectrum(0.8f, 0.6f, 0.9f), 40, 70},
+    {1, 0, FabricNormalization::Paper, kBright, SampledSpectrum(0.8f, 0.6f, 0.9f, 0.7f), 40, 70},
     {5, 0, FabricNormalization::UnitPeak, kDark, SampledSpectrum(0.9f), 60, 10},
     {30, 0, FabricNormalization::Paper, SampledSpectrum(1), SampledSpectrum(1), 20, 200},
-    {30, 45, FabricNormalization::UnitPeak, SampledSpectrum(0.2f, 0.15f, 0.1f), kBright, 70, 120},
+    {30, 45, FabricNormalization::UnitPeak, SampledSpectrum(0.2f, 0.15f, 0.1f, 0.05f), kBright, 70, 120},
     {5, 45, FabricNormalization::Paper, kDark, kDark, 30, 300},
     {1, 45, FabricNormalization::UnitPeak, SampledSpectrum(0.6f), SampledSpectrum(0.5f), 130, 45},
     {30, 0, FabricNormalization::UnitPeak, SampledSpectrum(0.5f), SampledSpectrum(0.9f), 85, 30},
@@ -220,7 +220,7 @@ INSTANTIATE_TEST_SUITE_P(Fabric, FabricDiffuseFurnace_,
 // kd = 1 - P max color keeps it there.
 TEST(FabricDiffuseFurnace, ColoredFabricKeepsItsLargestChannelBelowOne) {
     FabricDiffuseBxDF bxdf(
-        MakeFabric(5, 30, FabricNormalization::Paper, SampledSpectrum(0.9f, 0.5f, 0.2f), 0),
+        MakeFabric(5, 30, FabricNormalization::Paper, SampledSpectrum(0.9f, 0.5f, 0.2f, 0.6f), 0),
         SampledSpectrum(1));
     double peak = MaxAlbedoOverThreadPlane(bxdf);
     EXPECT_LE(peak, 1 + kQuadratureError) << bxdf.ToString();
@@ -228,7 +228,7 @@ TEST(FabricDiffuseFurnace, ColoredFabricKeepsItsLargestChannelBelowOne) {
 }
 
 TEST(FabricDiffuse, BlackColorIsTheDiffuseBxDF) {
-    SampledSpectrum diffuse(0.3f, 0.6f, 0.9f);
+    SampledSpectrum diffuse(0.3f, 0.6f, 0.9f, 0.45f);
     for (auto norm : {FabricNormalization::Paper, FabricNormalization::UnitPeak})
         for (Float n : {1.f, 30.f})
             ExpectIdentical(FabricDiffuseBxDF(MakeFabric(n, 45, norm, SampledSpectrum(0)), diffuse),
@@ -246,11 +246,12 @@ TEST(FabricDiffuse, BlackBaseIsTheFabricBxDF) {
 
 // The weights: kd from the lobe's peak albedo, the lobe chosen in proportion to the albedo shares.
 TEST(FabricDiffuse, WeightsFollowThePeakAlbedo) {
-    FabricBxDF fabric = MakeFabric(5, 0, FabricNormalization::Paper, SampledSpectrum(0.5f, 0.4f, 0.3f));
+    FabricBxDF fabric = MakeFabric(5, 0, FabricNormalization::Paper, SampledSpectrum(0.5f, 0.4f, 0.3f, 0.4f));
     // Tangent thread: the paper normalization's peak is I_c / I_o exactly (docs/fabric.md).
     Float peak = FabricBxDF::InverseIo(5) / FabricBxDF::InverseIc(5);
     EXPECT_NEAR(fabric.PeakAlbedo(), peak, 1e-6f);
     FabricDiffuseBxDF bxdf(fabric, SampledSpectrum(0.6f));
+    // The color's maximum is 0.5 and its average 0.4.
     Float kd = 1 - peak * 0.5f, wf = peak * 0.4f, wd = kd * 0.6f;
     EXPECT_NEAR(bxdf.DiffuseWeight(), kd, 1e-6f);
     EXPECT_NEAR(bxdf.FabricProbability(), wf / (wf + wd), 1e-6f);

@@ -17,6 +17,27 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Fixed wavelengths for the samples below: the film's arithmetic (weights, clamp, tiles) is
+// checked on the sensor's RGB of one spectral sample, whose conversion is the same for every
+// sample that carries these wavelengths.
+const SampledWavelengths kLambda = SampledWavelengths::SampleVisible(0.3f);
+
+// The RGB that one sample of radiance L at lambda records, as film.h documents it: the sensor's
+// RGB, to XYZ, to the output colour space. Float rounding differs from the film's one combined
+// matrix, hence the relative tolerance kMatrixRounding where it is compared.
+RGB Recorded(const RGBFilm &film, const SampledSpectrum &L,
+             const SampledWavelengths &lambda = kLambda) {
+    RGB sensorRGB = film.Sensor().ToSensorRGB(L, lambda);
+    return film.ColorSpace().ToRGB(Mul<XYZ>(film.Sensor().XYZFromSensorRGB, sensorRGB));
+}
+constexpr Float kMatrixRounding = 1e-5f;
+
+void ExpectRGBNear(RGB a, RGB b, Float relTol, const std::string &what = "") {
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(a[c], b[c], relTol * std::max<Float>(1, std::abs(b[c])))
+            << what << " channel " << c << ": " << a.ToString() << " vs " << b.ToString();
+}
+
 TEST(Film, CropWindowRoundsLikePbrtV4) {
     Point2i res(10, 10);
     EXPECT_EQ(PixelBoundsFromCropWindow(res, Bounds2f(Point2f(0.25f, 0), Point2f(0.75f, 0.5f))),
@@ -37,28 +58,42 @@ TEST(Film, RejectsBadBounds) {
 }
 
 TEST(Film, PixelIsTheWeightedAverage) {
+    // The film records each sample's RGB (Recorded) and averages those: two samples of weights 1
+    // and 3 give (a + 3 b) / 4.
     RGBFilm film(Point2i(8, 6), Bounds2i(Point2i(2, 1), Point2i(5, 4)), GaussianFilter(), "unused.exr");
     Point2i p(3, 2);
-    film.AddSample(p, SampledSpectrum(1, 2, 3), 1);
-    film.AddSample(p, SampledSpectrum(3, 2, 1), 3);
-    EXPECT_EQ(film.GetPixelRGB(p), SampledSpectrum(2.5f, 2, 1.5f));
-    EXPECT_EQ(film.GetPixelRGB(Point2i(4, 3)), SampledSpectrum(0.f));  // no samples: black
-    // Negative (Mitchell) weights enter the ratio as they are.
-    film.AddSample(Point2i(2, 1), SampledSpectrum(4.f), 2);
-    film.AddSample(Point2i(2, 1), SampledSpectrum(1.f), -1);
-    EXPECT_EQ(film.GetPixelRGB(Point2i(2, 1)), SampledSpectrum(7.f));
+    SampledSpectrum a(1, 2, 3, 4), b(3, 2, 1, 0.5f);
+    film.AddSample(p, a, kLambda, 1);
+    film.AddSample(p, b, kLambda, 3);
+    ExpectRGBNear(film.GetPixelRGB(p), (Recorded(film, a) + 3 * Recorded(film, b)) / 4,
+                  kMatrixRounding);
+    EXPECT_EQ(film.GetPixelRGB(Point2i(4, 3)), RGB(0, 0, 0));  // no samples: black
+    // Negative (Mitchell) weights enter the ratio as they are: (2 * 4 - 1 * 1) / (2 - 1) = 7.
+    film.AddSample(Point2i(2, 1), SampledSpectrum(4.f), kLambda, 2);
+    film.AddSample(Point2i(2, 1), SampledSpectrum(1.f), kLambda, -1);
+    ExpectRGBNear(film.GetPixelRGB(Point2i(2, 1)), Recorded(film, SampledSpectrum(7.f)),
+                  kMatrixRounding);
 }
 
 TEST(Film, MaxComponentValueScalesKeepingHue) {
+    // The limit applies to the sensor's RGB (pbrt-v4's RGBFilm::AddSample): a sample whose largest
+    // sensor channel is 40 is scaled by 10 / 40, which scales its output RGB the same (the
+    // conversion is linear), keeping its hue; one at 9 is unchanged.
     RGBFilm film(Point2i(2, 2), Bounds2i(Point2i(0, 0), Point2i(2, 2)), BoxFilter(), "unused.exr", 10);
-    film.AddSample(Point2i(0, 0), SampledSpectrum(40, 20, 5), 1);
-    EXPECT_EQ(film.GetPixelRGB(Point2i(0, 0)), SampledSpectrum(10, 5, 1.25f));
-    film.AddSample(Point2i(1, 0), SampledSpectrum(9, 1, 0), 1);  // below the limit: unchanged
-    EXPECT_EQ(film.GetPixelRGB(Point2i(1, 0)), SampledSpectrum(9, 1, 0));
+    SampledSpectrum L(4, 2, 0.5f, 1);
+    Float largest = film.Sensor().ToSensorRGB(L, kLambda).MaxComponentValue();
+    ASSERT_GT(largest, 0);
+    SampledSpectrum bright = L * (40 / largest), dim = L * (9 / largest);
+    film.AddSample(Point2i(0, 0), bright, kLambda, 1);
+    ExpectRGBNear(film.GetPixelRGB(Point2i(0, 0)), Recorded(film, bright) * (10.f / 40),
+                  kMatrixRounding);
+    film.AddSample(Point2i(1, 0), dim, kLambda, 1);  // below the limit: unchanged
+    ExpectRGBNear(film.GetPixelRGB(Point2i(1, 0)), Recorded(film, dim), kMatrixRounding);
 }
 
 // A constant radiance reconstructs exactly, whatever the filter (its weights cancel in the
-// ratio, even Mitchell's negative ones), through the real sampler -> filter -> film path.
+// ratio, even Mitchell's negative ones), through the real sampler -> filter -> film path. The
+// wavelengths are held fixed, so that every sample records the same RGB.
 TEST(Film, ConstantRadianceReconstructsExactly) {
     std::vector<Filter> filters = {BoxFilter(), GaussianFilter(), MitchellFilter(), TriangleFilter()};
     Point2i res(6, 5);
@@ -69,11 +104,14 @@ TEST(Film, ConstantRadianceReconstructsExactly) {
             for (int i = 0; i < sampler.SamplesPerPixel(); ++i) {
                 sampler.StartPixelSample(p, i);
                 CameraSample cs = GetCameraSample(sampler, p, film.GetFilter());
-                film.AddSample(p, SampledSpectrum(0.25f, 0.5f, 2), cs.filterWeight);
+                film.AddSample(p, SampledSpectrum(0.25f, 0.5f, 2, 1), kLambda, cs.filterWeight);
             }
+        RGB expected = Recorded(film, SampledSpectrum(0.25f, 0.5f, 2, 1));
         for (Point2i p : film.PixelBounds())
             for (int c = 0; c < 3; ++c)
-                EXPECT_NEAR(film.GetPixelRGB(p)[c], SampledSpectrum(0.25f, 0.5f, 2)[c], 1e-5f) << filter.ToString();
+                EXPECT_NEAR(film.GetPixelRGB(p)[c], expected[c],
+                            1e-5f * std::max<Float>(1, std::abs(expected[c])))
+                    << filter.ToString();
     }
 }
 
@@ -86,8 +124,10 @@ TEST(Film, DisjointTilesNeedNoLocks) {
         for (Point2i p : tile)
             for (int i = 0; i < 8; ++i) {
                 sampler.StartPixelSample(p, i);
+                SampledWavelengths lambda = film.SampleWavelengths(sampler.Get1D());
                 Point2f u = sampler.Get2D();
-                film.AddSample(p, SampledSpectrum(u.x, u.y, Float(p.x + p.y)), 0.5f + u.x);
+                film.AddSample(p, SampledSpectrum(u.x, u.y, Float(p.x + p.y), 1 - u.x), lambda,
+                               0.5f + u.x);
             }
     };
     RGBFilm serial(res, all, BoxFilter(), "unused.exr"), parallel(res, all, BoxFilter(), "unused.exr");
@@ -107,15 +147,27 @@ TEST(Film, WritesOnlyThePixelBounds) {
     for (std::string ext : {".exr", ".png"}) {
         std::string path = (dir / ("crop" + ext)).string();
         RGBFilm film(res, crop, BoxFilter(), path);
-        for (Point2i p : crop) film.AddSample(p, SampledSpectrum(p.x / 10.f, p.y / 10.f, 0.5f), 1);
+        // A different grey-ish value per pixel, (x + 10 y) / 100 times a spectrum whose RGB
+        // has largest component 1, so that the PNG (in [0, 1]) keeps it too.
+        SampledSpectrum L(1.f);
+        RGB unit = Recorded(film, L);
+        ASSERT_GT(unit.MinComponentValue(), 0) << unit.ToString();
+        L /= unit.MaxComponentValue();
+        for (Point2i p : crop) film.AddSample(p, L * ((p.x + 10 * p.y) / 100.f), kLambda, 1);
         ImageMetadata md;
         md.samplesPerPixel = 1;
         film.WriteImage(md);
         Image back = Image::Read(path);
         ASSERT_EQ(back.Resolution(), Point2i(4, 3)) << ext;
         Float tol = ext == ".exr" ? 0 : 0.01f;
-        EXPECT_NEAR(back.GetChannel(Point2i(0, 0), 0), 0.3f, tol) << ext;
-        EXPECT_NEAR(back.GetChannel(Point2i(3, 2), 1), 0.4f, tol) << ext;
+        // Image pixel (0, 0) is film pixel (3, 2); the last, (3, 2), is film pixel (6, 4).
+        for (Point2i q : Bounds2i(Point2i(0, 0), Point2i(4, 3)))
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(back.GetChannel(q, c), film.GetPixelRGB(crop.pMin + Vector2i(q))[c], tol)
+                    << ext << " pixel " << q.x << ", " << q.y << " channel " << c;
+        Float unitMax = unit.MaxComponentValue();
+        EXPECT_NEAR(back.GetChannel(Point2i(0, 0), 0), 0.23f * unit[0] / unitMax, tol + 1e-6f) << ext;
+        EXPECT_NEAR(back.GetChannel(Point2i(3, 2), 1), 0.46f * unit[1] / unitMax, tol + 1e-6f) << ext;
         if (ext == ".exr") {
             Imf::InputFile file(path.c_str());
             EXPECT_EQ(file.header().dataWindow().min, Imath::V2i(3, 2));

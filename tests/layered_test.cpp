@@ -32,7 +32,7 @@ namespace {
 // Chi-square tests in this file (Šidák correction), α = 0.01 overall.
 constexpr int kChi2Tests = 4;
 constexpr Float kEta = 1.5f;
-const SampledSpectrum kMetalEta(0.2f, 0.9f, 1.1f), kMetalK(3.9f, 2.4f, 2.2f);
+const SampledSpectrum kMetalEta(0.2f, 0.9f, 1.1f, 1.2f), kMetalK(3.9f, 2.4f, 2.2f, 2.1f);
 
 DielectricBxDF Coat(Float alpha, Float eta = kEta) {
     return DielectricBxDF(eta, TrowbridgeReitzDistribution(alpha, alpha));
@@ -323,11 +323,11 @@ TEST(LayeredBxDF, RhoNeverExceedsOne) {
         for (Vector3f wo : Outgoing()) {
             SampledSpectrum rho = bxdf.rho(wo, in.uc, in.u2);
             // 1 + the estimate's noise (weights stay O(1); 2^15 samples).
-            for (int c = 0; c < 3; ++c)
+            for (int c = 0; c < NSpectrumSamples; ++c)
                 EXPECT_LE(rho[c], 1.01) << bxdf.ToString() << " wo.z " << wo.z;
         }
         SampledSpectrum rhoHH = bxdf.rho(in.u1, in.uc, in.u2);
-        for (int c = 0; c < 3; ++c)
+        for (int c = 0; c < NSpectrumSamples; ++c)
             EXPECT_LE(rhoHH[c], 1.01) << bxdf.ToString();
     };
     for (const auto &b : diffuse)
@@ -390,7 +390,7 @@ TEST(LayeredBxDF, ReflectionIsReciprocalInExpectation) {
         {Normalize(Vector3f(0.5f, 0.2f, 0.8f)), Normalize(Vector3f(-0.3f, 0.4f, 0.6f))},
         {Normalize(Vector3f(0.1f, -0.7f, 0.4f)), Normalize(Vector3f(0.2f, 0.1f, 0.9f))}};
     for (auto [wo, wi] : pairs) {
-        for (int c = 0; c < 3; c += 2) {
+        for (int c = 0; c < NSpectrumSamples; c += 2) {
             Float a = bxdf.f(wo, wi, TransportMode::Radiance)[c], b = bxdf.f(wi, wo, TransportMode::Radiance)[c];
             EXPECT_NEAR(a, b, 0.04 * std::max(a, b));
             a = metal.f(wo, wi, TransportMode::Radiance)[c], b = metal.f(wi, wo, TransportMode::Radiance)[c];

@@ -9,6 +9,8 @@
 
 #include "pbrt_ext/lights.h"
 #include "pbrt_ext/shapes.h"
+#include "pbrt_ext/spectrum.h"
+#include "pbrt_ext/util/colorspace.h"
 #include "pbrt_ext/util/equalarea.h"
 #include "pbrt_ext/util/image.h"
 #include "pbrt_ext/util/rng.h"
@@ -36,6 +38,20 @@ Transform FromZTo(Vector3f w) {
 
 LightSampleContext ContextAt(Point3f p, Normal3f n) { return LightSampleContext(p, n, n); }
 
+// The wavelengths every check samples: 400, 500, 600 and 700 nm, integers, where a light's
+// tabulated (1 nm) copy of a spectrum is the spectrum itself.
+const SampledWavelengths kLambda = SampledWavelengths::SampleUniform(0, 400, 800);
+
+// A spectrum through the four values v at kLambda's wavelengths (linear between them), so that
+// a light's spectral values are known exactly, and differ per wavelength as RGB channels did.
+Spectrum At4(SampledSpectrum v) {
+    return Spectrum::PiecewiseLinear({400, 500, 600, 700}, {v[0], v[1], v[2], v[3]});
+}
+
+RGB ClampZero(RGB rgb) {
+    return RGB(std::max<Float>(0, rgb.r), std::max<Float>(0, rgb.g), std::max<Float>(0, rgb.b));
+}
+
 void ExpectSpectrumNear(SampledSpectrum a, SampledSpectrum b, Float relTol) {
     for (int c = 0; c < NSpectrumSamples; ++c)
         EXPECT_NEAR(a[c], b[c], relTol * std::max<Float>(1e-6f, std::abs(b[c]))) << "channel " << c;
@@ -58,11 +74,11 @@ Estimate MonteCarlo(int n, uint64_t seed, const std::function<double(Point2f)> &
     return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n)};
 }
 
-// Irradiance (green channel) at ctx from light sampling, as an integrator would estimate it.
+// Irradiance (at kLambda[1], 500 nm) at ctx from light sampling, as an integrator would estimate it.
 Estimate IrradianceByLightSampling(const Light &light, LightSampleContext ctx,
                                    bool allowIncompletePDF = false) {
     return MonteCarlo(200000, 17, [&](Point2f u) -> double {
-        pstd::optional<LightLiSample> ls = light.SampleLi(ctx, u, allowIncompletePDF);
+        pstd::optional<LightLiSample> ls = light.SampleLi(ctx, u, kLambda, allowIncompletePDF);
         if (!ls)
             return 0;
         return ls->L[1] * std::max<Float>(0, Dot(ls->wi, Vector3f(ctx.n))) / ls->pdf;
@@ -81,7 +97,7 @@ void ExpectSampleLiMatchesPDF(const Light &light, LightSampleContext ctx,
     opts.numTests = kChi2Tests;
     opts.seed = seed;
     auto sample = [&](Point2f u, Float) -> pstd::optional<Vector3f> {
-        pstd::optional<LightLiSample> ls = light.SampleLi(ctx, u, allowIncompletePDF);
+        pstd::optional<LightLiSample> ls = light.SampleLi(ctx, u, kLambda, allowIncompletePDF);
         if (!ls)
             return {};
         return ls->wi;
@@ -100,7 +116,7 @@ void ExpectSampleLiConsistent(const Light &light, LightSampleContext ctx,
     for (int k = 0; k < 20000; ++k) {
         Float u0 = rng.Uniform<Float>();
         pstd::optional<LightLiSample> ls =
-            light.SampleLi(ctx, Point2f(u0, rng.Uniform<Float>()), allowIncompletePDF);
+            light.SampleLi(ctx, Point2f(u0, rng.Uniform<Float>()), kLambda, allowIncompletePDF);
         if (!ls)
             continue;
         ++samples;
@@ -123,34 +139,34 @@ Bounds3f UnitCube() { return Bounds3f(Point3f(-1, -1, -1), Point3f(1, 1, 1)); }
 // Delta lights
 
 TEST(PointLight, InverseSquareLaw) {
-    SampledSpectrum I(1, 2, 4);
-    Light light = PointLight(Translate(Vector3f(1, 2, 3)), I, 2.5f);
+    SampledSpectrum I(1, 2, 4, 3);
+    Light light = PointLight(Translate(Vector3f(1, 2, 3)), At4(I), 2.5f);
     EXPECT_EQ(light.Type(), LightType::DeltaPosition);
     EXPECT_TRUE(IsDeltaLight(light.Type()));
     LightSampleContext ctx = ContextAt(Point3f(1, 2, 0), Normal3f(0, 0, 1));
-    pstd::optional<LightLiSample> ls = light.SampleLi(ctx, Point2f(0.3f, 0.7f));
+    pstd::optional<LightLiSample> ls = light.SampleLi(ctx, Point2f(0.3f, 0.7f), kLambda);
     ASSERT_TRUE(ls.has_value());
     ExpectSpectrumNear(ls->L, 2.5f * I / 9, 1e-6f);
     EXPECT_EQ(ls->wi, Vector3f(0, 0, 1));
     EXPECT_EQ(ls->pdf, 1);
     EXPECT_EQ(ls->pLight, Point3f(1, 2, 3));
     EXPECT_EQ(light.PDF_Li(ctx, ls->wi), 0);
-    ExpectSpectrumNear(light.Phi(), 4 * Pi * 2.5f * I, 1e-6f);
-    EXPECT_FALSE(light.L(Point3f(0, 0, 0), Normal3f(0, 0, 1), Point2f(), Vector3f(0, 0, 1)));
-    EXPECT_FALSE(light.Le(Ray(Point3f(0, 0, 0), Vector3f(0, 0, 1))));
+    ExpectSpectrumNear(light.Phi(kLambda), 4 * Pi * 2.5f * I, 1e-6f);
+    EXPECT_FALSE(light.L(Point3f(0, 0, 0), Normal3f(0, 0, 1), Point2f(), Vector3f(0, 0, 1), kLambda));
+    EXPECT_FALSE(light.Le(Ray(Point3f(0, 0, 0), Vector3f(0, 0, 1)), kLambda));
 }
 
 TEST(SpotLight, FalloffAndAxis) {
     Vector3f axis = Normalize(Vector3f(1, -2, 0.5f));
     Point3f pos(0.5f, 1, -1);
-    Light light = SpotLight(Translate(Vector3f(pos)) * FromZTo(axis), SampledSpectrum(3), 2,
-                            30, 20);
+    Light light = SpotLight(Translate(Vector3f(pos)) * FromZTo(axis), Spectrum(3.f), 2, 30, 20);
     Frame f = Frame::FromZ(axis);
     auto irradianceAt = [&](Float thetaDeg) {
         Float t = Radians(thetaDeg);
         Vector3f d = std::cos(t) * f.z + std::sin(t) * f.x;
         Point3f p = pos + 4 * d;
-        pstd::optional<LightLiSample> ls = light.SampleLi(ContextAt(p, Normal3f(-d)), Point2f());
+        pstd::optional<LightLiSample> ls =
+            light.SampleLi(ContextAt(p, Normal3f(-d)), Point2f(), kLambda);
         return ls ? ls->L[0] : Float(0);
     };
     EXPECT_NEAR(irradianceAt(0), 2 * 3 / 16.f, 1e-5f);
@@ -163,63 +179,65 @@ TEST(SpotLight, FalloffAndAxis) {
 }
 
 TEST(SpotLight, PhiIsIntensityIntegratedOverTheSphere) {
-    SpotLight spot(Transform(), SampledSpectrum(1, 2, 3), 1.5f, 40, 15);
+    SpotLight spot(Transform(), At4(SampledSpectrum(1, 2, 3, 4)), 1.5f, 40, 15);
     // I depends on cos theta only: integrate 2 pi I(cos theta) d cos theta by the midpoint rule.
     constexpr int n = 200000;
     double sum = 0;
     for (int i = 0; i < n; ++i) {
         double cosTheta = -1 + 2 * (i + 0.5) / n;
-        sum += spot.I(Vector3f(Float(std::sqrt(1 - cosTheta * cosTheta)), 0, Float(cosTheta)))[2];
+        sum += spot.I(Vector3f(Float(std::sqrt(1 - cosTheta * cosTheta)), 0, Float(cosTheta)),
+                      kLambda)[2];
     }
-    EXPECT_NEAR(spot.Phi()[2], 2 * Pi * sum * 2 / n, 1e-4 * spot.Phi()[2]);
+    EXPECT_NEAR(spot.Phi(kLambda)[2], 2 * Pi * sum * 2 / n, 1e-4 * spot.Phi(kLambda)[2]);
 }
 
 TEST(DistantLight, IrradianceIsLCosTheta) {
     Vector3f w = Normalize(Vector3f(1, 1, 1));
-    Light light = DistantLight(FromZTo(w), SampledSpectrum(1, 2, 3), 1.5f);
+    Light light = DistantLight(FromZTo(w), At4(SampledSpectrum(1, 2, 3, 4)), 1.5f);
     EXPECT_EQ(light.Type(), LightType::DeltaDirection);
     light.Preprocess(UnitCube());
     Normal3f n = Normal3f(Normalize(Vector3f(0, 1, 2)));
     LightSampleContext ctx = ContextAt(Point3f(0.5f, 0, 0), n);
-    pstd::optional<LightLiSample> ls = light.SampleLi(ctx, Point2f(0.5f, 0.5f));
+    pstd::optional<LightLiSample> ls = light.SampleLi(ctx, Point2f(0.5f, 0.5f), kLambda);
     ASSERT_TRUE(ls.has_value());
     EXPECT_LT(Length(ls->wi - w), 1e-6f);
     EXPECT_EQ(ls->pdf, 1);
     ExpectSpectrumNear(ls->L * Dot(ls->wi, Vector3f(n)),
-                       1.5f * SampledSpectrum(1, 2, 3) * Dot(w, Vector3f(n)), 1e-5f);
+                       1.5f * SampledSpectrum(1, 2, 3, 4) * Dot(w, Vector3f(n)), 1e-5f);
     // The shadow ray's end is outside the scene's bounding sphere.
     EXPECT_GT(Distance(ls->pLight, Point3f(0, 0, 0)), std::sqrt(3.f));
-    ExpectSpectrumNear(light.Phi(), 1.5f * SampledSpectrum(1, 2, 3) * Pi * 3, 1e-5f);
+    ExpectSpectrumNear(light.Phi(kLambda), 1.5f * SampledSpectrum(1, 2, 3, 4) * Pi * 3, 1e-5f);
 }
 
 // ---------------------------------------------------------------------------------------
 // Infinite lights
 
 TEST(UniformInfiniteLight, IrradianceIsPiL) {
-    Light light = UniformInfiniteLight(SampledSpectrum(0.5f, 1, 2), 2);
+    Light light = UniformInfiniteLight(At4(SampledSpectrum(0.5f, 1, 2, 1.5f)), 2);
     EXPECT_EQ(light.Type(), LightType::Infinite);
     light.Preprocess(UnitCube());
     LightSampleContext ctx = ContextAt(Point3f(0.2f, 0.1f, 0), Normal3f(0, 1, 0));
     ExpectWithinFiveSigma(IrradianceByLightSampling(light, ctx), Pi * 2);
-    ExpectSpectrumNear(light.Le(Ray(ctx.p, Vector3f(0, 1, 0))), SampledSpectrum(1, 2, 4), 0);
-    ExpectSpectrumNear(light.Phi(), 4 * Pi * Pi * 3 * SampledSpectrum(1, 2, 4), 1e-5f);
-    pstd::optional<LightLiSample> ls = light.SampleLi(ctx, Point2f(0.3f, 0.3f));
+    ExpectSpectrumNear(light.Le(Ray(ctx.p, Vector3f(0, 1, 0)), kLambda), SampledSpectrum(1, 2, 4, 3),
+                       0);
+    ExpectSpectrumNear(light.Phi(kLambda), 4 * Pi * Pi * 3 * SampledSpectrum(1, 2, 4, 3), 1e-5f);
+    pstd::optional<LightLiSample> ls = light.SampleLi(ctx, Point2f(0.3f, 0.3f), kLambda);
     ASSERT_TRUE(ls.has_value());
     EXPECT_NEAR(Distance(ls->pLight, ctx.p), 2 * std::sqrt(3.f), 1e-4f);
 }
 
 // pbrt-v4: under MIS, BSDF sampling handles a constant environment alone.
 TEST(UniformInfiniteLight, DeclinesWhenPdfMayBeIncomplete) {
-    UniformInfiniteLight light(SampledSpectrum(1), 1);
+    UniformInfiniteLight light(Spectrum(1.f), 1);
     light.Preprocess(UnitCube());
     LightSampleContext ctx = ContextAt(Point3f(0, 0, 0), Normal3f(0, 0, 1));
-    EXPECT_FALSE(light.SampleLi(ctx, Point2f(0.5f, 0.5f), true).has_value());
+    EXPECT_FALSE(light.SampleLi(ctx, Point2f(0.5f, 0.5f), kLambda, true).has_value());
     EXPECT_EQ(light.PDF_Li(ctx, Vector3f(0, 0, 1), true), 0);
     EXPECT_FLOAT_EQ(light.PDF_Li(ctx, Vector3f(0, 0, 1), false), Inv4Pi);
 }
 
 TEST(UniformInfiniteLight, ChiSquare) {
-    Light light = UniformInfiniteLight(SampledSpectrum(1), 1);
+    Light light = UniformInfiniteLight(Spectrum(1.f), 1);
     light.Preprocess(UnitCube());
     ExpectSampleLiMatchesPDF(light, ContextAt(Point3f(0, 0, 0), Normal3f(0, 0, 1)), false, 1);
 }
@@ -257,7 +275,7 @@ TEST(ImageInfiniteLight, SampleLiAgreesWithLeAndPDF) {
     LightSampleContext ctx = ContextAt(Point3f(0.1f, 0.2f, 0.3f), Normal3f(0, 0, 1));
     for (bool incomplete : {false, true})
         ExpectSampleLiConsistent(light, ctx, incomplete, [&](const LightLiSample &ls) {
-            return light.Le(Ray(ctx.p, ls.wi));
+            return light.Le(Ray(ctx.p, ls.wi), kLambda);
         });
 }
 
@@ -275,10 +293,15 @@ TEST(ImageInfiniteLight, Irradiance) {
     for (int y = 0; y < m; ++y)
         for (int x = 0; x < m; ++x) {
             Vector3f w = rotation(EqualAreaSquareToSphere(Point2f((x + 0.5f) / m, (y + 0.5f) / m)));
-            exact += light.Le(Ray(ctx.p, w))[1] * std::max<Float>(0, Dot(w, Vector3f(n)));
+            exact += light.Le(Ray(ctx.p, w), kLambda)[1] * std::max<Float>(0, Dot(w, Vector3f(n)));
         }
     exact *= 4 * Pi / (m * m);
     ExpectWithinFiveSigma(IrradianceByLightSampling(light, ctx), exact);
+}
+
+// A pixel's radiance is the sRGB illuminant spectrum of its RGB, clamped at zero, times the scale.
+SampledSpectrum PixelLe(RGB rgb, Float scale) {
+    return scale * RGBIlluminantSpectrum(RGBColorSpace::sRGB(), ClampZero(rgb)).Sample(kLambda);
 }
 
 TEST(ImageInfiniteLight, PhiAndClampedNegativePixel) {
@@ -288,12 +311,21 @@ TEST(ImageInfiniteLight, PhiAndClampedNegativePixel) {
     SampledSpectrum sum(0.f);
     for (int y = 0; y < 16; ++y)
         for (int x = 0; x < 16; ++x)
-            sum += ClampZero(image.GetChannels(Point2i(x, y)));
-    ExpectSpectrumNear(light.Phi(), 4 * Pi * Pi * 3 * 3 * sum / 256, 1e-5f);
+            sum += PixelLe(image.GetChannels(Point2i(x, y)), 1);
+    ExpectSpectrumNear(light.Phi(kLambda), 4 * Pi * Pi * 3 * 3 * sum / 256, 1e-5f);
+    // The pixel whose red is -1 emits as if its red were 0 (an RGB spectrum is positive at every
+    // wavelength, so the check is against the clamped RGB's, not against 0 in one channel).
+    RGB negative = image.GetChannels(Point2i(12, 2));
+    ASSERT_EQ(negative[0], -1);
     Vector3f w = EqualAreaSquareToSphere(Point2f(12.5f / 16, 2.5f / 16));
-    SampledSpectrum Le = light.Le(Ray(Point3f(0, 0, 0), w));
-    EXPECT_EQ(Le[0], 0);
-    EXPECT_GT(Le[1], 0);
+    SampledSpectrum Le = light.Le(Ray(Point3f(0, 0, 0), w), kLambda);
+    ExpectSpectrumNear(Le, PixelLe(RGB(0, negative[1], negative[2]), 3), 1e-6f);
+    EXPECT_GT(Le.MinComponentValue(), 0);
+    // Its red clamped to 0 makes the pixel bluer than its neighbour, whose red is 0.8: less
+    // at 700 nm relative to 400 nm.
+    SampledSpectrum neighbour = light.Le(
+        Ray(Point3f(0, 0, 0), EqualAreaSquareToSphere(Point2f(12.5f / 16, 3.5f / 16))), kLambda);
+    EXPECT_LT(Le[3] / Le[0], neighbour[3] / neighbour[0]);
 }
 
 // Compensation leaves pixels at or below the average to BSDF sampling; a constant map keeps
@@ -339,21 +371,22 @@ TEST(ImageInfiniteLight, RejectsNonSquareImage) {
 
 TEST(DiffuseAreaLight, EmitsFromTheFrontUnlessTwoSided) {
     Disk disk(Transform(), false, 0, 1, 0, 360);  // normal +z
-    Light oneSided = DiffuseAreaLight(disk, SampledSpectrum(1, 2, 3), 2, false);
-    Light twoSided = DiffuseAreaLight(disk, SampledSpectrum(1, 2, 3), 2, true);
+    Spectrum L = At4(SampledSpectrum(1, 2, 3, 4));
+    Light oneSided = DiffuseAreaLight(disk, L, 2, false);
+    Light twoSided = DiffuseAreaLight(disk, L, 2, true);
     EXPECT_EQ(oneSided.Type(), LightType::Area);
     Normal3f n(0, 0, 1);
-    ExpectSpectrumNear(oneSided.L(Point3f(0, 0, 0), n, Point2f(), Vector3f(0, 0.6f, 0.8f)),
-                       SampledSpectrum(2, 4, 6), 0);
-    EXPECT_FALSE(oneSided.L(Point3f(0, 0, 0), n, Point2f(), Vector3f(0, 0.6f, -0.8f)));
-    ExpectSpectrumNear(twoSided.L(Point3f(0, 0, 0), n, Point2f(), Vector3f(0, 0.6f, -0.8f)),
-                       SampledSpectrum(2, 4, 6), 0);
-    ExpectSpectrumNear(oneSided.Phi(), Pi * Pi * SampledSpectrum(2, 4, 6), 1e-5f);
-    ExpectSpectrumNear(twoSided.Phi(), 2 * Pi * Pi * SampledSpectrum(2, 4, 6), 1e-5f);
+    ExpectSpectrumNear(oneSided.L(Point3f(0, 0, 0), n, Point2f(), Vector3f(0, 0.6f, 0.8f), kLambda),
+                       SampledSpectrum(2, 4, 6, 8), 0);
+    EXPECT_FALSE(oneSided.L(Point3f(0, 0, 0), n, Point2f(), Vector3f(0, 0.6f, -0.8f), kLambda));
+    ExpectSpectrumNear(twoSided.L(Point3f(0, 0, 0), n, Point2f(), Vector3f(0, 0.6f, -0.8f), kLambda),
+                       SampledSpectrum(2, 4, 6, 8), 0);
+    ExpectSpectrumNear(oneSided.Phi(kLambda), Pi * Pi * SampledSpectrum(2, 4, 6, 8), 1e-5f);
+    ExpectSpectrumNear(twoSided.Phi(kLambda), 2 * Pi * Pi * SampledSpectrum(2, 4, 6, 8), 1e-5f);
     // Seen from behind, a one-sided light sends nothing.
     LightSampleContext below = ContextAt(Point3f(0, 0, -2), Normal3f(0, 0, 1));
-    EXPECT_FALSE(oneSided.SampleLi(below, Point2f(0.3f, 0.6f)).has_value());
-    EXPECT_TRUE(twoSided.SampleLi(below, Point2f(0.3f, 0.6f)).has_value());
+    EXPECT_FALSE(oneSided.SampleLi(below, Point2f(0.3f, 0.6f), kLambda).has_value());
+    EXPECT_TRUE(twoSided.SampleLi(below, Point2f(0.3f, 0.6f), kLambda).has_value());
 }
 
 // A sphere of radius R at distance d subtends a cone of sin alpha = R / d; facing it, the
@@ -361,17 +394,17 @@ TEST(DiffuseAreaLight, EmitsFromTheFrontUnlessTwoSided) {
 TEST(DiffuseAreaLight, SphereIrradianceAndSolidAngle) {
     Float R = 1, d = 3;
     Sphere sphere(Translate(Vector3f(0, 0, d)), false, R, -R, R, 360);
-    Light light = DiffuseAreaLight(sphere, SampledSpectrum(1, 2, 3), 1.5f, false);
+    Light light = DiffuseAreaLight(sphere, At4(SampledSpectrum(1, 2, 3, 4)), 1.5f, false);
     LightSampleContext ctx = ContextAt(Point3f(0, 0, 0), Normal3f(0, 0, 1));
     Float sin2Alpha = Sqr(R / d), cosAlpha = std::sqrt(1 - sin2Alpha);
     EXPECT_NEAR(light.PDF_Li(ctx, Vector3f(0, 0, 1)), 1 / (2 * Pi * (1 - cosAlpha)), 1e-3f);
     EXPECT_EQ(light.PDF_Li(ctx, Vector3f(0, 1, 0)), 0);
     ExpectWithinFiveSigma(IrradianceByLightSampling(light, ctx), Pi * 1.5f * 2 * sin2Alpha);
-    ExpectSpectrumNear(light.Phi(), Pi * 4 * Pi * R * R * 1.5f * SampledSpectrum(1, 2, 3),
+    ExpectSpectrumNear(light.Phi(kLambda), Pi * 4 * Pi * R * R * 1.5f * SampledSpectrum(1, 2, 3, 4),
                        1e-5f);
     ExpectSampleLiMatchesPDF(light, ctx, false, 4);
     ExpectSampleLiConsistent(light, ctx, true, [&](const LightLiSample &ls) {
-        return light.L(ls.pLight, ls.nLight, Point2f(), -ls.wi);
+        return light.L(ls.pLight, ls.nLight, Point2f(), -ls.wi, kLambda);
     });
 }
 
@@ -379,12 +412,12 @@ TEST(DiffuseAreaLight, SphereIrradianceAndSolidAngle) {
 TEST(DiffuseAreaLight, DiskIrradiance) {
     Float R = 1.5f, h = 2;
     Disk disk(Translate(Vector3f(0, 0, h)), true, 0, R, 0, 360);  // reversed: faces -z
-    Light light = DiffuseAreaLight(disk, SampledSpectrum(1, 2, 3), 1, false);
+    Light light = DiffuseAreaLight(disk, At4(SampledSpectrum(1, 2, 3, 4)), 1, false);
     LightSampleContext ctx = ContextAt(Point3f(0, 0, 0), Normal3f(0, 0, 1));
     ExpectWithinFiveSigma(IrradianceByLightSampling(light, ctx), Pi * 2 * R * R / (h * h + R * R));
     ExpectSampleLiMatchesPDF(light, ctx, false, 5);
     ExpectSampleLiConsistent(light, ctx, false, [&](const LightLiSample &ls) {
-        return light.L(ls.pLight, ls.nLight, Point2f(), -ls.wi);
+        return light.L(ls.pLight, ls.nLight, Point2f(), -ls.wi, kLambda);
     });
 }
 
@@ -392,11 +425,11 @@ TEST(DiffuseAreaLight, TriangleChiSquare) {
     TriangleMesh mesh = MakeTriangleMesh(Transform(), false, {0, 1, 2},
                                          {Point3f(-1, -1, 1), Point3f(2, -0.5f, 1.5f),
                                           Point3f(0, 1.5f, 0.5f)});
-    Light light = DiffuseAreaLight(Triangle(&mesh, 0), SampledSpectrum(1), 1, true);
+    Light light = DiffuseAreaLight(Triangle(&mesh, 0), Spectrum(1.f), 1, true);
     LightSampleContext ctx = ContextAt(Point3f(0.2f, 0.1f, -0.5f), Normal3f(0, 0, 1));
     ExpectSampleLiMatchesPDF(light, ctx, false, 6);
     ExpectSampleLiConsistent(light, ctx, false, [&](const LightLiSample &ls) {
-        return light.L(ls.pLight, ls.nLight, Point2f(), -ls.wi);
+        return light.L(ls.pLight, ls.nLight, Point2f(), -ls.wi, kLambda);
     });
 }
 

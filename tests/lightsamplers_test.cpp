@@ -5,6 +5,7 @@
 
 #include "pbrt_ext/lights.h"
 #include "pbrt_ext/lightsamplers.h"
+#include "pbrt_ext/spectrum.h"
 #include "pbrt_ext/util/rng.h"
 #include "pbrt_ext/util/transform.h"
 
@@ -18,11 +19,20 @@ namespace {
 
 std::vector<Light> TestLights() {
     std::vector<Light> lights;
-    lights.push_back(PointLight(Translate(Vector3f(1, 2, 3)), SampledSpectrum(1, 2, 3), 1));
-    lights.push_back(PointLight(Transform(), SampledSpectrum(0.f), 5));  // no power
-    lights.push_back(SpotLight(Transform(), SampledSpectrum(4), 2, 30, 25));
-    lights.push_back(PointLight(Transform(), SampledSpectrum(0.5f), 0.1f));
+    // A spectrum that varies with wavelength (blackbody, peak 1), so that its power depends on
+    // how the wavelengths are weighted.
+    lights.push_back(PointLight(Translate(Vector3f(1, 2, 3)), BlackbodySpectrum(3000), 1));
+    lights.push_back(PointLight(Transform(), Spectrum(0.f), 5));  // no power
+    lights.push_back(SpotLight(Transform(), Spectrum(4.f), 2, 30, 25));
+    lights.push_back(PointLight(Transform(), Spectrum(0.5f), 0.1f));
     return lights;
+}
+
+// pbrt-v4's power of a light for the power sampler: Phi at four visible wavelengths (stratified
+// at u = 0.5) divided by their densities, averaged, as the film weights radiance.
+double Power(const Light &light) {
+    SampledWavelengths lambda = SampledWavelengths::SampleVisible(0.5f);
+    return SafeDiv(light.Phi(lambda), lambda.PDF()).Average();
 }
 
 TEST(PowerLightSampler, PMFProportionalToPower) {
@@ -30,10 +40,10 @@ TEST(PowerLightSampler, PMFProportionalToPower) {
     PowerLightSampler sampler(lights);
     double total = 0;
     for (const Light &l : lights)
-        total += l.Phi().Average();
+        total += Power(l);
     double sum = 0;
     for (int i = 0; i < int(lights.size()); ++i) {
-        EXPECT_NEAR(sampler.PMF(i), lights[i].Phi().Average() / total, 1e-6);
+        EXPECT_NEAR(sampler.PMF(i), Power(lights[i]) / total, 1e-6);
         sum += sampler.PMF(i);
     }
     EXPECT_NEAR(sum, 1, 1e-6);
@@ -64,9 +74,7 @@ TEST(PowerLightSampler, SampleMatchesPMF) {
 }
 
 TEST(PowerLightSampler, NoPowerAnywhereIsUniform) {
-    std::vector<Light> lights;
-    for (int i = 0; i < 3; ++i)
-        lights.push_back(PointLight(Transform(), SampledSpectrum(0.f), 1));
+    std::vector<Light> lights(3, Light(PointLight(Transform(), Spectrum(0.f), 1)));
     PowerLightSampler sampler(lights);
     for (int i = 0; i < 3; ++i)
         EXPECT_FLOAT_EQ(sampler.PMF(i), 1.f / 3);

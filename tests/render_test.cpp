@@ -21,12 +21,19 @@ constexpr PathStrategy kStrategies[] = {PathStrategy::MIS, PathStrategy::BSDF, P
 constexpr double kSigmas = 3;
 // Float arithmetic along a path: the floor of the tolerance where the estimator has no variance.
 constexpr double kFloatFloor = 1e-5;
+// The RGB -> spectrum -> RGB round trip of the sigmoid table, per channel for an RGB in [0, 1]
+// (tests/rgbtospectrum_test.cpp). An "rgb" emitter's spectrum is the table's fit to rgb / (2 max
+// rgb) times that scale, so its round trip is within kRGBRoundTrip * 2 max(rgb) (times the light's
+// scale).
+constexpr double kRGBRoundTrip = 1e-3;
 
 struct Estimate {
     double mean, standardError;
 };
 
-// Li along one ray, averaged over n independent samples, with its standard error.
+// Li along one ray at one of the sample's wavelengths (drawn as the renderer draws them), averaged
+// over n independent samples, with its standard error. The analytic scenes it is used on have
+// constant spectra, so the value is the same at every wavelength.
 Estimate EstimateLi(const Scene &scene, PathIntegratorOptions options, const Ray &ray, int n,
                     int channel = 0) {
     PathIntegrator integrator(scene, options);
@@ -35,7 +42,8 @@ Estimate EstimateLi(const Scene &scene, PathIntegratorOptions options, const Ray
     double sum = 0, sum2 = 0;
     for (int i = 0; i < n; ++i) {
         sampler.StartPixelSample(Point2i(3, 5), i);
-        double L = integrator.Li(ray, sampler, rays)[channel];
+        SampledWavelengths lambda = SampledWavelengths::SampleVisible(sampler.Get1D());
+        double L = integrator.Li(ray, lambda, sampler, rays)[channel];
         sum += L;
         sum2 += L * L;
     }
@@ -48,12 +56,27 @@ void ExpectNear(Estimate e, double expected, const std::string &what) {
         << what << ": standard error " << e.standardError;
 }
 
+// The mean of channel c over the film's pixels, with its standard error from the pixels' spread.
+// For images whose pixels are independent estimates of one value (an emitter or a plane filling
+// the view): the noise is then the wavelength sampling's, the film's spectral-to-RGB estimate.
+Estimate ImageMean(const RGBFilm &film, int c) {
+    double sum = 0, sum2 = 0, n = 0;
+    for (Point2i p : film.PixelBounds()) {
+        double v = film.GetPixelRGB(p)[c];
+        sum += v;
+        sum2 += v * v;
+        ++n;
+    }
+    double mean = sum / n, variance = std::max(0.0, sum2 / n - mean * mean);
+    return {mean, std::sqrt(variance / (n - 1))};
+}
+
 // A sphere of material m alone in a uniform white environment.
 std::unique_ptr<Scene> SphereInFurnace(Material m, Float environment) {
     SceneBuilder builder(LookingAt(Point3f(0, 0, 5), Point3f(0, 0, 0), 30, Point2i(8, 8)),
                          BoxFilteredFilm(Point2i(8, 8)), IndependentSampler(1));
     builder.AddSphere(UnitSphereAt(Point3f(0, 0, 0)), builder.AddMaterial(std::move(m)));
-    builder.AddLight(UniformInfiniteLight(SampledSpectrum(environment), 1));
+    builder.AddLight(UniformInfiniteLight(Spectrum(environment), 1));
     return builder.Build();
 }
 
@@ -69,7 +92,7 @@ std::vector<Ray> RaysAtUnitSphere() {
 
 bool AllPixelsFinite(const RGBFilm &film) {
     for (Point2i p : film.PixelBounds()) {
-        SampledSpectrum rgb = film.GetPixelRGB(p);
+        RGB rgb = film.GetPixelRGB(p);
         for (int c = 0; c < 3; ++c)
             if (!std::isfinite(rgb[c]))
                 return false;
@@ -82,7 +105,7 @@ bool AllPixelsFinite(const RGBFilm &film) {
 TEST(RenderFurnace, DiffuseSphereReflectsAlbedoTimesEnvironment) {
     // A convex diffuse surface sees only the environment: Lo = ρ L exactly.
     constexpr Float rho = 0.6f, L = 1.5f;
-    auto scene = SphereInFurnace(DiffuseMaterial{SampledSpectrum(rho)}, L);
+    auto scene = SphereInFurnace(DiffuseMaterial{Spectrum(rho)}, L);
     for (PathStrategy strategy : kStrategies)
         for (const Ray &ray : RaysAtUnitSphere())
             ExpectNear(EstimateLi(*scene, {5, false, strategy}, ray, 20000), rho * L,
@@ -93,7 +116,7 @@ TEST(RenderFurnace, FabricSphereReflectsItsDirectionalAlbedoTimesEnvironment) {
     // Lo(wo) = a(wo) L with a the directional albedo at the hit, by quadrature (docs/fabric.md).
     constexpr Float L = 2;
     FabricMaterial fabric;
-    fabric.reflectance = SampledSpectrum(0.9f);
+    fabric.reflectance = Spectrum(0.9f);
     fabric.roughness = 0.3f;
     fabric.threadAngle = 30;
     auto scene = SphereInFurnace(fabric, L);
@@ -127,29 +150,35 @@ TEST(RenderFurnace, LosslessGlassIsInvisibleInAWhiteFurnace) {
 }
 
 TEST(RenderDirect, EmitterSeenDirectlyIsItsRadiance) {
+    // An emitter of "rgb L [2 3 4]" at scale 1.5 fills the view: every pixel estimates its RGB,
+    // 1.5 (2, 3, 4). Spectral transport makes each sample an estimate (the film integrates the
+    // emission spectrum against the sensor's curves at the sample's four wavelengths), so the
+    // image mean is compared within kSigmas standard errors plus the RGB -> spectrum -> RGB round
+    // trip of the sigmoid table (kRGBRoundTrip: 2 max(rgb) = 8, times the scale).
     SceneBuilder builder(LookingAt(Point3f(0, 0, 3), Point3f(0, 0, 0), 20, Point2i(8, 8)),
-                         BoxFilteredFilm(Point2i(8, 8)), IndependentSampler(4));
-    int black = builder.AddMaterial(DiffuseMaterial{SampledSpectrum(0.f)});
-    builder.AddTriangleMesh(Rectangle(-5, 5, -5, 5, 0), black,
-                            AreaLightDescription{SampledSpectrum(2, 3, 4), 1.5f, false});
+                         BoxFilteredFilm(Point2i(8, 8)), IndependentSampler(4096));
+    int black = builder.AddMaterial(DiffuseMaterial{Spectrum(0.f)});
+    builder.AddTriangleMesh(Rectangle(-5, 5, -5, 5, 0), black, RGBAreaLight(2, 3, 4, 1.5f));
     auto scene = builder.Build();
     for (PathStrategy strategy : kStrategies) {
         scene->integratorOptions.strategy = strategy;
         scene->film = BoxFilteredFilm(Point2i(8, 8));
         Render(*scene, {1, true});
-        for (Point2i p : scene->film.PixelBounds())
-            for (int c = 0; c < 3; ++c)
-                EXPECT_NEAR(scene->film.GetPixelRGB(p)[c], 1.5 * (2 + c), 1e-5)
-                    << "strategy " << ToString(strategy);
+        for (int c = 0; c < 3; ++c) {
+            double expected = 1.5 * (2 + c), roundTrip = kRGBRoundTrip * 2 * 4 * 1.5;
+            Estimate e = ImageMean(scene->film, c);
+            EXPECT_NEAR(e.mean, expected, kSigmas * e.standardError + roundTrip)
+                << "strategy " << ToString(strategy) << ", channel " << c << ": standard error "
+                << e.standardError;
+        }
     }
 }
 
 TEST(RenderDirect, OneSidedEmitterIsDarkFromBehind) {
     SceneBuilder builder(LookingAt(Point3f(0, 0, 3), Point3f(0, 0, 0), 20, Point2i(4, 4)),
                          BoxFilteredFilm(Point2i(4, 4)), IndependentSampler(4));
-    int black = builder.AddMaterial(DiffuseMaterial{SampledSpectrum(0.f)});
-    builder.AddTriangleMesh(Rectangle(-5, 5, -5, 5, 0, true), black,
-                            AreaLightDescription{SampledSpectrum(1), 1, false});
+    int black = builder.AddMaterial(DiffuseMaterial{Spectrum(0.f)});
+    builder.AddTriangleMesh(Rectangle(-5, 5, -5, 5, 0, true), black, RGBAreaLight(1, 1, 1));
     auto scene = builder.Build();
     Render(*scene, {1, true});
     for (Point2i p : scene->film.PixelBounds())
@@ -158,13 +187,17 @@ TEST(RenderDirect, OneSidedEmitterIsDarkFromBehind) {
 
 TEST(RenderDirect, DiffusePlaneUnderDistantLightIsReflectanceTimesIrradianceOverPi) {
     // Lo = R E / π, E = L cos θ: the light comes from 40° off the normal; nothing else is visible.
+    // The light is white (D65 of luminance L) and the plane grey, so the image is the grey
+    // Lo (1, 1, 1) exactly in expectation (sRGB's white is D65's chromaticity); each sample carries
+    // the film's wavelength-sampling noise, hence the image mean within kSigmas standard errors.
     constexpr Float R = 0.5f, L = 3, theta = 40;
     SceneBuilder builder(LookingAt(Point3f(0, 0, 4), Point3f(0, 0, 0), 20, Point2i(8, 8)),
-                         BoxFilteredFilm(Point2i(8, 8)), IndependentSampler(2));
+                         BoxFilteredFilm(Point2i(8, 8)), IndependentSampler(256));
     builder.AddTriangleMesh(Rectangle(-20, 20, -20, 20, 0),
-                            builder.AddMaterial(DiffuseMaterial{SampledSpectrum(R)}));
+                            builder.AddMaterial(DiffuseMaterial{Spectrum(R)}));
     // DistantLight sends light from worldFromLight(0, 0, 1): tilt +z by θ about x.
-    builder.AddLight(DistantLight(RotateX(theta), SampledSpectrum(L), 1));
+    Emission white = WhiteEmission(L);
+    builder.AddLight(DistantLight(RotateX(theta), white.spectrum, white.scale));
     auto scene = builder.Build();
     // A delta light is found only by light sampling: the mis and light strategies.
     for (PathStrategy strategy : {PathStrategy::MIS, PathStrategy::Light}) {
@@ -173,8 +206,12 @@ TEST(RenderDirect, DiffusePlaneUnderDistantLightIsReflectanceTimesIrradianceOver
         RenderStatistics stats = Render(*scene, {2, true});
         EXPECT_EQ(stats.discardedSamples, 0);
         double expected = R * L * std::cos(Radians(theta)) / Pi;
-        for (Point2i p : scene->film.PixelBounds())
-            EXPECT_NEAR(scene->film.GetPixelRGB(p)[0], expected, 1e-5 * expected);
+        for (int c = 0; c < 3; ++c) {
+            Estimate e = ImageMean(scene->film, c);
+            EXPECT_NEAR(e.mean, expected, kSigmas * e.standardError + kFloatFloor * expected)
+                << "strategy " << ToString(strategy) << ", channel " << c << ": standard error "
+                << e.standardError;
+        }
     }
 }
 
@@ -192,10 +229,10 @@ TEST(RenderDirect, DiffusePointUnderRectangularEmitterIsReflectanceTimesViewFact
     SceneBuilder builder(LookingAt(Point3f(0, 0, 4), Point3f(0, 0, 0), 20, Point2i(4, 4)),
                          BoxFilteredFilm(Point2i(4, 4)), IndependentSampler(1));
     builder.AddTriangleMesh(Rectangle(-20, 20, -20, 20, 0),
-                            builder.AddMaterial(DiffuseMaterial{SampledSpectrum(R)}));
-    int black = builder.AddMaterial(DiffuseMaterial{SampledSpectrum(0.f)});
+                            builder.AddMaterial(DiffuseMaterial{Spectrum(R)}));
+    int black = builder.AddMaterial(DiffuseMaterial{Spectrum(0.f)});
     builder.AddTriangleMesh(Rectangle(-1, 1, -1, 1, 0.5f, true), black,
-                            AreaLightDescription{SampledSpectrum(Le), 1, false});
+                            AreaLightDescription{Spectrum(Le), 1, false});
     auto scene = builder.Build();
     double expected = R * Le * 4 * CornerViewFactor(1, 1, 0.5);
     Ray down(Point3f(0, 0, 0.25f), Vector3f(0, 0, -1));
@@ -209,7 +246,7 @@ TEST(RenderStrategies, AgreeWithinNoiseWithAnAreaLightAndFabric) {
     // difference of two independent renders' means has the standard error σ_d/√pixels, estimated
     // from the per-pixel differences; 4 of them is the threshold (pixels are nearly independent).
     FabricMaterial fabric;
-    fabric.reflectance = SampledSpectrum(0.8f, 0.7f, 0.5f);
+    fabric.reflectance = RGBReflectance(0.8f, 0.7f, 0.5f);
     fabric.roughness = 0.4f;
     auto render = [&](PathStrategy strategy) {
         auto scene = CornellBox(Point2i(32, 32), 256, {5, false, strategy}, fabric);
@@ -251,7 +288,7 @@ TEST(RenderInstancing, InstancesRenderAsExplicitCopies) {
     auto render = [](bool instanced) {
         SceneBuilder builder(LookingAt(Point3f(0, 0, 8), Point3f(0, 0, 0), 40, Point2i(16, 16)),
                              BoxFilteredFilm(Point2i(16, 16)), IndependentSampler(16));
-        int white = builder.AddMaterial(DiffuseMaterial{SampledSpectrum(0.7f)});
+        int white = builder.AddMaterial(DiffuseMaterial{Spectrum(0.7f)});
         const Point3f centers[] = {Point3f(-1.2f, 0, 0), Point3f(1.2f, 0.3f, 0)};
         if (instanced) {
             builder.BeginObject("ball");
@@ -263,8 +300,9 @@ TEST(RenderInstancing, InstancesRenderAsExplicitCopies) {
             for (Point3f c : centers)
                 builder.AddSphere(UnitSphereAt(c), white);
         }
-        builder.AddLight(DistantLight(RotateX(30), SampledSpectrum(2), 1));
-        builder.AddLight(UniformInfiniteLight(SampledSpectrum(0.2f), 1));
+        Emission sun = WhiteEmission(2), sky = WhiteEmission(0.2f);
+        builder.AddLight(DistantLight(RotateX(30), sun.spectrum, sun.scale));
+        builder.AddLight(UniformInfiniteLight(sky.spectrum, sky.scale));
         auto scene = builder.Build();
         Render(*scene, {1, true});
         return scene;
@@ -298,8 +336,9 @@ TEST(RenderTimeLimit, StopsBetweenPassesWithEveryPixelAtTheSameSampleCount) {
         SceneBuilder builder(LookingAt(Point3f(0, 0, 5), Point3f(0, 0, 0), 30, Point2i(32, 32)),
                              BoxFilteredFilm(Point2i(32, 32)), IndependentSampler(spp, 3));
         builder.AddSphere(UnitSphereAt(Point3f(0, 0, 0)),
-                          builder.AddMaterial(DiffuseMaterial{SampledSpectrum(0.5f)}));
-        builder.AddLight(UniformInfiniteLight(SampledSpectrum(1.f), 1));
+                          builder.AddMaterial(DiffuseMaterial{Spectrum(0.5f)}));
+        Emission white = WhiteEmission(1);
+        builder.AddLight(UniformInfiniteLight(white.spectrum, white.scale));
         return builder.Build();
     };
     auto limited = scene(1 << 20);

@@ -136,7 +136,7 @@ TEST(FrComplex, NormalIncidenceMatchesClosedForm) {
 }
 
 TEST(FrComplex, SpectrumEvaluatesEachChannelOnItsOwn) {
-    SampledSpectrum eta(0.2f, 1.1f, 1.5f), k(3.9f, 2.5f, 0.f);
+    SampledSpectrum eta(0.2f, 1.1f, 1.5f, 0.7f), k(3.9f, 2.5f, 0.f, 1.2f);
     for (Float cosTheta : kCosines) {
         SampledSpectrum F = FrComplex(cosTheta, eta, k);
         for (int i = 0; i < NSpectrumSamples; ++i)

@@ -2,6 +2,8 @@
 #pragma once
 
 #include "pbrt_ext/scene.h"
+#include "pbrt_ext/spectrum.h"
+#include "pbrt_ext/util/colorspace.h"
 
 #include <memory>
 #include <vector>
@@ -16,6 +18,31 @@ inline Camera LookingAt(Point3f eye, Point3f look, Float fovDegrees, Point2i res
 
 inline RGBFilm BoxFilteredFilm(Point2i resolution) {
     return RGBFilm(resolution, Bounds2i(Point2i(0, 0), resolution), BoxFilter(), "test.exr");
+}
+
+// A reflectance as a scene's "rgb reflectance" makes it: the sRGB albedo spectrum of rgb.
+inline Spectrum RGBReflectance(Float r, Float g, Float b) {
+    return RGBAlbedoSpectrum(RGBColorSpace::sRGB(), RGB(r, g, b));
+}
+
+// An emitter as a scene's "rgb L [r g b]" makes it (pbrt_ext/create_lights.cpp): the sRGB
+// illuminant spectrum of rgb, with the light's scale divided by the illuminant's luminance
+// (pbrt-v4's SpectrumToPhotometric), so that rgb (1, 1, 1) is D65 at 1 nit and, through the
+// default sensor and sRGB output, an emitter of rgb renders to about rgb.
+struct Emission {
+    Spectrum spectrum;
+    Float scale;
+};
+inline Emission RGBEmission(Float r, Float g, Float b, Float scale = 1) {
+    Spectrum L = RGBIlluminantSpectrum(RGBColorSpace::sRGB(), RGB(r, g, b));
+    return {L, scale / SpectrumToPhotometric(L)};
+}
+// White light of the given luminance (nits): "rgb L [1 1 1]" with that scale.
+inline Emission WhiteEmission(Float scale) { return RGBEmission(1, 1, 1, scale); }
+inline AreaLightDescription RGBAreaLight(Float r, Float g, Float b, Float scale = 1,
+                                         bool twoSided = false) {
+    Emission e = RGBEmission(r, g, b, scale);
+    return AreaLightDescription{e.spectrum, e.scale, twoSided};
 }
 
 // An axis-aligned rectangle at height z, facing +z (or -z when facingDown), as two triangles.
@@ -56,15 +83,15 @@ inline std::shared_ptr<TriangleMesh> Quad(Point3f a, Point3f b, Point3f c, Point
 // outside the open side (the classic dimensions, in units of 100 mm).
 inline std::unique_ptr<Scene> CornellBox(Point2i resolution, int spp, PathIntegratorOptions options,
                                          Material boxMaterial = DiffuseMaterial{
-                                             SampledSpectrum(0.73f)}) {
+                                             Spectrum(0.73f)}) {
     SceneBuilder builder(LookingAt(Point3f(2.78f, 2.73f, -8.0f), Point3f(2.78f, 2.73f, 0), 39.3f,
                                    resolution),
                          RGBFilm(resolution, Bounds2i(Point2i(0, 0), resolution), GaussianFilter(),
                                  "cornell.exr"),
                          ZSobolSampler(spp, resolution));
-    int white = builder.AddMaterial(DiffuseMaterial{SampledSpectrum(0.73f)});
-    int red = builder.AddMaterial(DiffuseMaterial{SampledSpectrum(0.65f, 0.05f, 0.05f)});
-    int green = builder.AddMaterial(DiffuseMaterial{SampledSpectrum(0.12f, 0.45f, 0.15f)});
+    int white = builder.AddMaterial(DiffuseMaterial{Spectrum(0.73f)});
+    int red = builder.AddMaterial(DiffuseMaterial{RGBReflectance(0.65f, 0.05f, 0.05f)});
+    int green = builder.AddMaterial(DiffuseMaterial{RGBReflectance(0.12f, 0.45f, 0.15f)});
     int boxes = builder.AddMaterial(std::move(boxMaterial));
     const Float s = 5.5f;
     builder.AddTriangleMesh(Quad(Point3f(0, 0, 0), Point3f(s, 0, 0), Point3f(s, 0, s), Point3f(0, 0, s)), white);
@@ -78,7 +105,7 @@ inline std::unique_ptr<Scene> CornellBox(Point2i resolution, int spp, PathIntegr
     const Float y = s - 0.01f;
     builder.AddTriangleMesh(Quad(Point3f(2.13f, y, 2.27f), Point3f(3.43f, y, 2.27f),
                                  Point3f(3.43f, y, 3.32f), Point3f(2.13f, y, 3.32f)),
-                            white, AreaLightDescription{SampledSpectrum(17, 12, 4), 1, false});
+                            white, RGBAreaLight(17, 12, 4));
     builder.SetIntegrator(options);
     return builder.Build();
 }

@@ -3,6 +3,8 @@
 // decoded image per (file, encoding).
 #include "pbrt_ext/textures.h"
 
+#include "pbrt_ext/util/colorspace.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -18,18 +20,37 @@ TextureEvalContext AtUV(Float u, Float v) {
     return ctx;
 }
 
-void ExpectRGBNear(SampledSpectrum s, Float r, Float g, Float b, Float tol) {
-    EXPECT_NEAR(s[0], r, tol);
-    EXPECT_NEAR(s[1], g, tol);
-    EXPECT_NEAR(s[2], b, tol);
+// The wavelengths spectrum textures are evaluated at: 400, 500, 600 and 700 nm.
+const SampledWavelengths kLambda = SampledWavelengths::SampleUniform(0, 400, 800);
+
+// A spectrum through the values v at kLambda's wavelengths, linear between them.
+Spectrum At4(Float v0, Float v1, Float v2, Float v3) {
+    return Spectrum::PiecewiseLinear({400, 500, 600, 700}, {v0, v1, v2, v3});
+}
+
+void ExpectSpectrumNear(SampledSpectrum s, SampledSpectrum expected, Float tol) {
+    for (int i = 0; i < NSpectrumSamples; ++i)
+        EXPECT_NEAR(s[i], expected[i], tol) << "at " << kLambda[i] << " nm";
+}
+
+// An image texel of the given RGB becomes the sRGB spectrum of the texture's type (pbrt-v4's
+// SpectrumImageTexture): s must be that spectrum at kLambda.
+void ExpectRGBNear(SampledSpectrum s, SpectrumType type, Float r, Float g, Float b, Float tol) {
+    const RGBColorSpace &cs = RGBColorSpace::sRGB();
+    RGB rgb(r, g, b);
+    SampledSpectrum expected = type == SpectrumType::Albedo
+                                   ? RGBAlbedoSpectrum(cs, rgb).Sample(kLambda)
+                                   : RGBUnboundedSpectrum(cs, rgb).Sample(kLambda);
+    ExpectSpectrumNear(s, expected, tol);
 }
 
 TEST(TextureCombine, ConstantAndScale) {
     EXPECT_EQ(FloatTexture(0.25f).Evaluate(AtUV(0, 0)), 0.25f);
     FloatTexture scaled = FloatScaledTexture(FloatTexture(3), FloatTexture(0.5f));
     EXPECT_EQ(scaled.Evaluate(AtUV(0, 0)), 1.5f);
-    SpectrumTexture s = SpectrumScaledTexture(SpectrumTexture(SampledSpectrum(0.2f, 0.4f, 0.8f)), FloatTexture(0.5f));
-    EXPECT_EQ(s.Evaluate(AtUV(0, 0)), SampledSpectrum(0.1f, 0.2f, 0.4f));
+    SpectrumTexture s =
+        SpectrumScaledTexture(SpectrumTexture(At4(0.2f, 0.4f, 0.8f, 0.6f)), FloatTexture(0.5f));
+    EXPECT_EQ(s.Evaluate(AtUV(0, 0), kLambda), SampledSpectrum(0.1f, 0.2f, 0.4f, 0.3f));
     // A zero scale gives exactly zero even for an infinite texture (it is not evaluated).
     FloatTexture zero = FloatScaledTexture(FloatTexture(Infinity), FloatTexture(0));
     EXPECT_EQ(zero.Evaluate(AtUV(0, 0)), 0);
@@ -38,10 +59,11 @@ TEST(TextureCombine, ConstantAndScale) {
 TEST(TextureCombine, MixByAmountTexture) {
     // The amount is itself a texture: 0 on even checker squares, 1 on odd ones.
     FloatTexture amount = FloatCheckerboardTexture(UVMapping{}, FloatTexture(0.25f), FloatTexture(1));
-    SpectrumTexture mix = SpectrumMixTexture(SpectrumTexture(SampledSpectrum(1, 0, 0)),
-                                             SpectrumTexture(SampledSpectrum(0, 0, 1)), amount);
-    ExpectRGBNear(mix.Evaluate(AtUV(0.5f, 0.5f)), 0.75f, 0, 0.25f, 1e-6f);
-    ExpectRGBNear(mix.Evaluate(AtUV(1.5f, 0.5f)), 0, 0, 1, 0);
+    SpectrumTexture mix = SpectrumMixTexture(SpectrumTexture(At4(1, 0, 0, 0.5f)),
+                                             SpectrumTexture(At4(0, 0, 1, 0.5f)), amount);
+    ExpectSpectrumNear(mix.Evaluate(AtUV(0.5f, 0.5f), kLambda), SampledSpectrum(0.75f, 0, 0.25f, 0.5f),
+                       1e-6f);
+    ExpectSpectrumNear(mix.Evaluate(AtUV(1.5f, 0.5f), kLambda), SampledSpectrum(0, 0, 1, 0.5f), 0);
     // Weight 0 or 1 does not evaluate the other side (an Inf there would make NaN).
     FloatTexture pure = FloatMixTexture(FloatTexture(2), FloatTexture(Infinity), FloatTexture(0));
     EXPECT_EQ(pure.Evaluate(AtUV(0, 0)), 2);
@@ -94,6 +116,8 @@ TEST(ImageTextureOptions, ParseWrapModeAndColorEncoding) {
 // Image files written per test, removed afterwards; the texture cache starts empty.
 class ImageTextures : public testing::Test {
   protected:
+    static constexpr SpectrumType U = SpectrumType::Unbounded, A = SpectrumType::Albedo;
+
     void SetUp() override {
         dir = fs::temp_directory_path() /
               ("pbrt_textures_test_" + std::to_string(::getpid()) + "_" +
@@ -110,8 +134,7 @@ class ImageTextures : public testing::Test {
     // A 2x2 linear EXR: top row red, green; bottom row blue, white.
     std::string WriteQuad() {
         Image image(Point2i(2, 2));
-        SampledSpectrum texels[4] = {SampledSpectrum(1, 0, 0), SampledSpectrum(0, 1, 0),
-                                     SampledSpectrum(0, 0, 1), SampledSpectrum(1, 1, 1)};
+        RGB texels[4] = {RGB(1, 0, 0), RGB(0, 1, 0), RGB(0, 0, 1), RGB(1, 1, 1)};
         for (int i = 0; i < 4; ++i)
             for (int c = 0; c < 3; ++c) image.SetChannel(Point2i(i % 2, i / 2), c, texels[i][c]);
         std::string path = Path("quad.exr");
@@ -124,7 +147,7 @@ class ImageTextures : public testing::Test {
         t.image = ImageTextureCache::Get(path, ColorEncoding::SRGB());
         t.filter = filter;
         t.wrapMode = wrap;
-        t.kind = SpectrumKind::Unbounded;
+        t.type = SpectrumType::Unbounded;
         return t;
     }
 
@@ -133,40 +156,43 @@ class ImageTextures : public testing::Test {
 
 TEST_F(ImageTextures, PointLookupFlipsTSoThatVZeroIsTheBottomRow) {
     SpectrumImageTexture t = Texture(WriteQuad(), ImageFilter::Point, WrapMode::Repeat);
-    ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.25f)), 0, 0, 1, 0);  // bottom left: blue
-    ExpectRGBNear(t.Evaluate(AtUV(0.75f, 0.25f)), 1, 1, 1, 0);  // bottom right: white
-    ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.75f)), 1, 0, 0, 0);  // top left: red
-    ExpectRGBNear(t.Evaluate(AtUV(0.75f, 0.75f)), 0, 1, 0, 0);
+    ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.25f), kLambda), U, 0, 0, 1, 0);  // bottom left: blue
+    ExpectRGBNear(t.Evaluate(AtUV(0.75f, 0.25f), kLambda), U, 1, 1, 1, 0);  // bottom right: white
+    ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.75f), kLambda), U, 1, 0, 0, 0);  // top left: red
+    ExpectRGBNear(t.Evaluate(AtUV(0.75f, 0.75f), kLambda), U, 0, 1, 0, 0);
 }
 
 TEST_F(ImageTextures, WrapModesOutsideTheUnitSquare) {
     std::string path = WriteQuad();
     // u = -0.25 lies in the right column's repeat; clamp holds the left column; black is zero.
-    ExpectRGBNear(Texture(path, ImageFilter::Point, WrapMode::Repeat).Evaluate(AtUV(-0.25f, 0.75f)), 0, 1, 0, 0);
-    ExpectRGBNear(Texture(path, ImageFilter::Point, WrapMode::Clamp).Evaluate(AtUV(-0.25f, 0.75f)), 1, 0, 0, 0);
-    ExpectRGBNear(Texture(path, ImageFilter::Point, WrapMode::Black).Evaluate(AtUV(-0.25f, 0.75f)), 0, 0, 0, 0);
-    ExpectRGBNear(Texture(path, ImageFilter::Point, WrapMode::Repeat).Evaluate(AtUV(1.25f, 1.75f)), 1, 0, 0, 0);
+    auto point = [&](WrapMode wrap, Float u, Float v) {
+        return Texture(path, ImageFilter::Point, wrap).Evaluate(AtUV(u, v), kLambda);
+    };
+    ExpectRGBNear(point(WrapMode::Repeat, -0.25f, 0.75f), U, 0, 1, 0, 0);
+    ExpectRGBNear(point(WrapMode::Clamp, -0.25f, 0.75f), U, 1, 0, 0, 0);
+    ExpectRGBNear(point(WrapMode::Black, -0.25f, 0.75f), U, 0, 0, 0, 0);
+    ExpectRGBNear(point(WrapMode::Repeat, 1.25f, 1.75f), U, 1, 0, 0, 0);
 }
 
 TEST_F(ImageTextures, BilinearBlendsTexelCenters) {
     SpectrumImageTexture t = Texture(WriteQuad(), ImageFilter::Bilinear, WrapMode::Clamp);
     // The image center is equidistant from the four texels.
-    ExpectRGBNear(t.Evaluate(AtUV(0.5f, 0.5f)), 0.5f, 0.5f, 0.5f, 1e-6f);
+    ExpectRGBNear(t.Evaluate(AtUV(0.5f, 0.5f), kLambda), U, 0.5f, 0.5f, 0.5f, 1e-6f);
     // Halfway between the bottom texel centers.
-    ExpectRGBNear(t.Evaluate(AtUV(0.5f, 0.25f)), 0.5f, 0.5f, 1, 1e-6f);
+    ExpectRGBNear(t.Evaluate(AtUV(0.5f, 0.25f), kLambda), U, 0.5f, 0.5f, 1, 1e-6f);
     // A texel center reproduces the texel.
-    ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.75f)), 1, 0, 0, 1e-6f);
+    ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.75f), kLambda), U, 1, 0, 0, 1e-6f);
 }
 
 TEST_F(ImageTextures, ScaleInvertAndReflectanceClamp) {
     SpectrumImageTexture t = Texture(WriteQuad(), ImageFilter::Point, WrapMode::Repeat);
     t.scale = 3;
-    ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.75f)), 3, 0, 0, 0);  // unbounded: as scaled
-    t.kind = SpectrumKind::Reflectance;
-    ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.75f)), 1, 0, 0, 0);  // reflectance: at most 1
+    ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.75f), kLambda), U, 3, 0, 0, 0);  // unbounded: as scaled
+    t.type = SpectrumType::Albedo;
+    ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.75f), kLambda), A, 1, 0, 0, 0);  // reflectance: at most 1
     t.scale = 0.5f;
     t.invert = true;
-    ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.75f)), 0.5f, 1, 1, 0);  // 1 - 0.5 * red
+    ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.75f), kLambda), A, 0.5f, 1, 1, 0);  // 1 - 0.5 * red
 
     FloatImageTexture f;
     f.image = t.image;

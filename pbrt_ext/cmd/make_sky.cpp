@@ -13,7 +13,7 @@
 #include "pbrt_ext/util/equalarea.h"
 #include "pbrt_ext/util/image.h"
 #include "pbrt_ext/util/math.h"
-#include "pbrt_ext/util/spectrum.h"
+#include "pbrt_ext/util/color.h"
 #include "pbrt_ext/util/vecmath.h"
 
 #include <cerrno>
@@ -43,10 +43,10 @@ struct SkyOptions {
 // Radiances (linear RGB). The sky is about 1 near the horizon so that scenes need no exposure
 // scale; the sun adds an irradiance of kSunIrradiance at normal incidence, a few times what the
 // sky delivers, so that it casts visible shadows and highlights.
-const SampledSpectrum kZenith(0.30f, 0.50f, 1.00f);
-const SampledSpectrum kHorizon(1.00f, 0.88f, 0.72f);
-const SampledSpectrum kGround(0.06f, 0.055f, 0.05f);
-const SampledSpectrum kSunColor(1.00f, 0.93f, 0.82f);
+const RGB kZenith(0.30f, 0.50f, 1.00f);
+const RGB kHorizon(1.00f, 0.88f, 0.72f);
+const RGB kGround(0.06f, 0.055f, 0.05f);
+const RGB kSunColor(1.00f, 0.93f, 0.82f);
 constexpr Float kSunIrradiance = 4;
 // Larger than the real sun's 0.27 degrees so that the disk covers several pixels at 256x256.
 constexpr Float kSunRadiusDegrees = 2;
@@ -123,8 +123,8 @@ class Sky {
           // Radiance that gives kSunIrradiance over the disk's solid angle 2 pi (1 - cos r).
           sunRadiance(kSunColor * (kSunIrradiance / (2 * Pi * (1 - cosSunRadius)))) {}
 
-    SampledSpectrum L(Vector3f w) const {
-        SampledSpectrum L = Background(w.z);
+    RGB L(Vector3f w) const {
+        RGB L = Background(w.z);
         Float cosAngle = Dot(w, sunDirection);
         if (cosAngle >= cosSunRadius) L += sunRadiance;
         Float angle = Degrees(SafeACos(cosAngle));
@@ -134,25 +134,27 @@ class Sky {
 
   private:
     // Sky and ground as a function of the height z = sin(elevation) alone.
-    static SampledSpectrum Background(Float z) {
+    static RGB Background(Float z) {
         if (z < 0) {
             Float t = Clamp(-z / kHorizonBlend, 0, 1);
-            return Lerp(t * t * (3 - 2 * t), kHorizon, kGround);
+            Float w = t * t * (3 - 2 * t);
+            return (1 - w) * kHorizon + w * kGround;
         }
         // The warm band hugs the horizon: at 30 degrees of elevation it is down to 1/8.
-        return Lerp(Pow<3>(1 - z), kZenith, kHorizon);
+        Float w = Pow<3>(1 - z);
+        return (1 - w) * kZenith + w * kHorizon;
     }
 
     Vector3f sunDirection;
     Float cosSunRadius;
-    SampledSpectrum sunRadiance;
+    RGB sunRadiance;
 };
 
 Image RenderSky(const Sky &sky, int resolution) {
     Image image(Point2i(resolution, resolution));
     for (int y = 0; y < resolution; ++y)
         for (int x = 0; x < resolution; ++x) {
-            SampledSpectrum sum(0.f);
+            RGB sum(0, 0, 0);
             for (int sy = 0; sy < kSubsamples; ++sy)
                 for (int sx = 0; sx < kSubsamples; ++sx) {
                     // Pixel (x, y) covers [x, x+1] x [y, y+1] of the square, as the light's lookup.

@@ -1,5 +1,7 @@
 #include "pbrt_ext/util/image.h"
 
+#include "pbrt_ext/util/colorspace.h"
+
 #include "pbrt_ext/util/atomicfile.h"
 #include "pbrt_ext/util/imageheaders.h"
 #include "pbrt_ext/util/resourcelimits.h"
@@ -8,6 +10,7 @@
 #include <ImfDoubleAttribute.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfStandardAttributes.h>
 #include <ImfIntAttribute.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
@@ -89,7 +92,7 @@ Float Image::LookupNearestChannel(Point2f st, int c, WrapMode2D wrapMode) const 
     return GetChannel(p, c, wrapMode);
 }
 
-SampledSpectrum Image::LookupNearest(Point2f st, WrapMode2D wrapMode) const {
+RGB Image::LookupNearest(Point2f st, WrapMode2D wrapMode) const {
     Point2i p(int(st.x * resolution.x), int(st.y * resolution.y));
     return GetChannels(p, wrapMode);
 }
@@ -98,7 +101,7 @@ Float Image::BilerpChannel(Point2f st, int c, WrapMode2D wrapMode) const {
     return Bilerp(st, wrapMode)[c];
 }
 
-SampledSpectrum Image::Bilerp(Point2f st, WrapMode2D wrapMode) const {
+RGB Image::Bilerp(Point2f st, WrapMode2D wrapMode) const {
     // Pixel centers sit at half-integers in continuous pixel coordinates.
     Float x = st.x * resolution.x - 0.5f, y = st.y * resolution.y - 0.5f;
     int xi = int(std::floor(x)), yi = int(std::floor(y));
@@ -205,6 +208,11 @@ void Image::WriteEXR(const std::string &path, const std::string &tmpPath,
         header.insert("maxSamplesPerPixel", Imf::IntAttribute(metadata.maxSamplesPerPixel));
     }
     if (!metadata.scene.empty()) header.insert("scene", Imf::StringAttribute(metadata.scene));
+    if (const RGBColorSpace *cs = metadata.colorSpace) {
+        auto v = [](Chromaticity c) { return Imath::V2f(c.x, c.y); };
+        Imf::addChromaticities(header, Imf::Chromaticities(v(cs->r), v(cs->g), v(cs->b), v(cs->w)));
+        header.insert("colorSpace", Imf::StringAttribute(std::string(cs->Name())));
+    }
     for (const auto &[key, value] : metadata.extra) {
         // Overwriting a standard attribute (e.g. "channels") would corrupt the file.
         if (header.find(key) != header.end())

@@ -16,7 +16,7 @@
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/util/bounds.h"
 #include "pbrt_ext/util/math.h"
-#include "pbrt_ext/util/spectrum.h"
+#include "pbrt_ext/util/color.h"
 #include "pbrt_ext/util/vecmath.h"
 
 #include <map>
@@ -25,6 +25,8 @@
 #include <vector>
 
 namespace pbrt {
+
+class RGBColorSpace;
 
 // The sRGB transfer function (IEC 61966-2-1), on [0, 1].
 PBRT_CPU_GPU inline Float SRGBToLinear(Float v) {
@@ -125,6 +127,9 @@ struct ImageMetadata {
     std::map<std::string, std::string> extra;
     std::optional<Point2i> fullResolution;
     std::optional<Bounds2i> pixelBounds;
+    // The colour space of the pixels: the EXR's standard "chromaticities" attribute (primaries
+    // and white point) and a "colorSpace" string attribute naming it. None when unset.
+    const RGBColorSpace *colorSpace = nullptr;
 };
 
 class Image {
@@ -143,19 +148,19 @@ class Image {
         if (!RemapPixelCoords(&p, resolution, wrapMode)) return 0;
         return pixels[PixelOffset(p) + c];
     }
-    SampledSpectrum GetChannels(Point2i p, WrapMode2D wrapMode = WrapMode::Clamp) const {
-        if (!RemapPixelCoords(&p, resolution, wrapMode)) return SampledSpectrum(0.f);
+    RGB GetChannels(Point2i p, WrapMode2D wrapMode = WrapMode::Clamp) const {
+        if (!RemapPixelCoords(&p, resolution, wrapMode)) return RGB(0, 0, 0);
         size_t o = PixelOffset(p);
-        return SampledSpectrum(pixels[o], pixels[o + 1], pixels[o + 2]);
+        return RGB(pixels[o], pixels[o + 1], pixels[o + 2]);
     }
     void SetChannel(Point2i p, int c, Float value) { pixels[PixelOffset(p) + c] = value; }
 
     // Lookups at continuous coordinates st in [0, 1]^2 over the whole image (pixel centers at
     // half-integers, as pbrt-v4).
     Float LookupNearestChannel(Point2f st, int c, WrapMode2D wrapMode = WrapMode::Clamp) const;
-    SampledSpectrum LookupNearest(Point2f st, WrapMode2D wrapMode = WrapMode::Clamp) const;
+    RGB LookupNearest(Point2f st, WrapMode2D wrapMode = WrapMode::Clamp) const;
     Float BilerpChannel(Point2f st, int c, WrapMode2D wrapMode = WrapMode::Clamp) const;
-    SampledSpectrum Bilerp(Point2f st, WrapMode2D wrapMode = WrapMode::Clamp) const;
+    RGB Bilerp(Point2f st, WrapMode2D wrapMode = WrapMode::Clamp) const;
 
     // The channel average per pixel, row-major (x fastest): the tabulated function that an
     // image light's PiecewiseConstant2D samples, as pbrt-v4's GetSamplingDistribution for an

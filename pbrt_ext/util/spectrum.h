@@ -1,6 +1,9 @@
-// pbrt_ext: SampledSpectrum (pbrt-v4's util/spectrum.h, reduced to RGB).
-// pbrt-v4 carries NSpectrumSamples wavelengths; here the three samples are linear RGB, with
-// pbrt-v4's operator set, so a BxDF written against one compiles unchanged against the other.
+// pbrt_ext: SampledSpectrum and SampledWavelengths (pbrt-v4's util/spectrum.h, the GPU-clean part).
+// A path carries NSpectrumSamples = 4 wavelengths, as in pbrt-v4; every spectral quantity along it
+// (throughput, radiance, reflectance) is a SampledSpectrum holding its value at those wavelengths.
+// The operator set is pbrt-v4's, so a BxDF written against one compiles unchanged against the other.
+// The host-side spectra that are sampled into these (constant, tabulated, blackbody, RGB) are in
+// pbrt_ext/spectrum.h.
 #pragma once
 
 #include "pbrt_ext/pbrt.h"
@@ -15,13 +18,17 @@
 
 namespace pbrt {
 
-PBRT_CONST int NSpectrumSamples = 3;
+PBRT_CONST int NSpectrumSamples = 4;
+
+// The wavelength range (nm) that rendering samples and that spectra are tabulated over.
+PBRT_CONST Float Lambda_min = 360, Lambda_max = 830;
 
 class SampledSpectrum {
   public:
     SampledSpectrum() = default;
-    PBRT_CPU_GPU explicit SampledSpectrum(Float c) : values{c, c, c} {}
-    PBRT_CPU_GPU SampledSpectrum(Float r, Float g, Float b) : values{r, g, b} {}
+    PBRT_CPU_GPU explicit SampledSpectrum(Float c) : values{c, c, c, c} {}
+    // One value per wavelength sample.
+    PBRT_CPU_GPU SampledSpectrum(Float v0, Float v1, Float v2, Float v3) : values{v0, v1, v2, v3} {}
     PBRT_CPU_GPU explicit SampledSpectrum(pstd::span<const Float> v) {
         assert(v.size() == NSpectrumSamples);
         for (int i = 0; i < NSpectrumSamples; ++i) values[i] = v[i];
@@ -82,19 +89,26 @@ class SampledSpectrum {
     PBRT_CPU_GPU friend bool operator!=(const SampledSpectrum &a, const SampledSpectrum &b) { return !(a == b); }
 
     PBRT_CPU_GPU Float MinComponentValue() const {
-        return std::min(values[0], std::min(values[1], values[2]));
+        Float m = values[0];
+        for (int i = 1; i < NSpectrumSamples; ++i) m = std::min(m, values[i]);
+        return m;
     }
     PBRT_CPU_GPU Float MaxComponentValue() const {
-        return std::max(values[0], std::max(values[1], values[2]));
+        Float m = values[0];
+        for (int i = 1; i < NSpectrumSamples; ++i) m = std::max(m, values[i]);
+        return m;
     }
     PBRT_CPU_GPU Float Average() const {
-        return (values[0] + values[1] + values[2]) / NSpectrumSamples;
+        Float sum = 0;
+        for (Float v : values) sum += v;
+        return sum / NSpectrumSamples;
     }
 
-    // Host-only: "[ SampledSpectrum r g b ]".
+    // Host-only: "[ SampledSpectrum v0 v1 v2 v3 ]".
     std::string ToString() const {
-        char buf[96];
-        std::snprintf(buf, sizeof(buf), "[ SampledSpectrum %g %g %g ]", values[0], values[1], values[2]);
+        char buf[128];
+        std::snprintf(buf, sizeof(buf), "[ SampledSpectrum %g %g %g %g ]", values[0], values[1],
+                      values[2], values[3]);
         return buf;
     }
 
@@ -134,5 +148,85 @@ PBRT_CPU_GPU inline SampledSpectrum Clamp(const SampledSpectrum &s, Float low, F
 PBRT_CPU_GPU inline SampledSpectrum Lerp(Float t, const SampledSpectrum &a, const SampledSpectrum &b) {
     return (1 - t) * a + t * b;
 }
+
+// pbrt-v4's importance density over visible wavelengths: proportional to 1 / cosh^2(0.0072
+// (lambda - 538)) on [360, 830] nm, which follows the luminance response closely, so that the
+// wavelengths the eye sees best are sampled most (Radziszewski et al. 2009, as used by pbrt-v4).
+PBRT_CPU_GPU inline Float VisibleWavelengthsPDF(Float lambda) {
+    if (lambda < Lambda_min || lambda > Lambda_max) return 0;
+    return 0.0039398042f / Sqr(std::cosh(0.0072f * (lambda - 538)));
+}
+
+// The inverse of that density's cumulative distribution at u in [0, 1].
+PBRT_CPU_GPU inline Float SampleVisibleWavelengths(Float u) {
+    return 538 - 138.888889f * std::atanh(0.85691062f - 1.82750197f * u);
+}
+
+// The wavelengths a camera sample carries and their densities. Secondary wavelengths (all but
+// the first) are terminated where a path's scattering depends on wavelength (dispersion): their
+// density becomes 0, so they no longer contribute, and the first one's is divided by
+// NSpectrumSamples so that the estimate stays unbiased.
+class SampledWavelengths {
+  public:
+    // pbrt-v4's stratified visible sampling: one uniform u, shifted by i / NSpectrumSamples per
+    // sample, each warped by SampleVisibleWavelengths.
+    PBRT_CPU_GPU static SampledWavelengths SampleVisible(Float u) {
+        SampledWavelengths swl;
+        for (int i = 0; i < NSpectrumSamples; ++i) {
+            Float up = u + Float(i) / NSpectrumSamples;
+            if (up > 1) up -= 1;
+            swl.lambda[i] = SampleVisibleWavelengths(up);
+            swl.pdf[i] = VisibleWavelengthsPDF(swl.lambda[i]);
+        }
+        return swl;
+    }
+
+    // Uniform over [lambdaMin, lambdaMax], stratified as SampleVisible.
+    PBRT_CPU_GPU static SampledWavelengths SampleUniform(Float u, Float lambdaMin = Lambda_min,
+                                                         Float lambdaMax = Lambda_max) {
+        SampledWavelengths swl;
+        Float delta = (lambdaMax - lambdaMin) / NSpectrumSamples;
+        swl.lambda[0] = Lerp(u, lambdaMin, lambdaMax);
+        for (int i = 1; i < NSpectrumSamples; ++i) {
+            swl.lambda[i] = swl.lambda[i - 1] + delta;
+            if (swl.lambda[i] > lambdaMax) swl.lambda[i] = lambdaMin + (swl.lambda[i] - lambdaMax);
+        }
+        for (int i = 0; i < NSpectrumSamples; ++i) swl.pdf[i] = 1 / (lambdaMax - lambdaMin);
+        return swl;
+    }
+
+    PBRT_CPU_GPU Float operator[](int i) const { return lambda[i]; }
+    PBRT_CPU_GPU SampledSpectrum PDF() const { return SampledSpectrum(pdf[0], pdf[1], pdf[2], pdf[3]); }
+
+    PBRT_CPU_GPU void TerminateSecondary() {
+        if (SecondaryTerminated()) return;
+        for (int i = 1; i < NSpectrumSamples; ++i) pdf[i] = 0;
+        pdf[0] /= NSpectrumSamples;
+    }
+    PBRT_CPU_GPU bool SecondaryTerminated() const {
+        for (int i = 1; i < NSpectrumSamples; ++i)
+            if (pdf[i] != 0) return false;
+        return true;
+    }
+
+    PBRT_CPU_GPU friend bool operator==(const SampledWavelengths &a, const SampledWavelengths &b) {
+        for (int i = 0; i < NSpectrumSamples; ++i)
+            if (a.lambda[i] != b.lambda[i] || a.pdf[i] != b.pdf[i]) return false;
+        return true;
+    }
+
+    // Host-only.
+    std::string ToString() const {
+        char buf[192];
+        std::snprintf(buf, sizeof(buf), "[ SampledWavelengths lambda: %g %g %g %g pdf: %g %g %g %g ]",
+                      lambda[0], lambda[1], lambda[2], lambda[3], pdf[0], pdf[1], pdf[2], pdf[3]);
+        return buf;
+    }
+
+  private:
+    Float lambda[NSpectrumSamples] = {}, pdf[NSpectrumSamples] = {};
+};
+
+static_assert(NSpectrumSamples == 4, "PDF() and ToString() list four samples");
 
 }  // namespace pbrt

@@ -11,7 +11,7 @@ __global__ void FabricKernel(const Vector3f *wo, const Point2f *u, Float *out, i
     if (i >= count)
         return;
     Vector3f thread = FabricBxDF::ThreadDirection(30, 10);
-    FabricBxDF bxdf(SampledSpectrum(0.5f, 0.6f, 0.7f), Float(0.3f), thread, FabricSampling::Best,
+    FabricBxDF bxdf(SampledSpectrum(0.5f, 0.6f, 0.7f, 0.8f), Float(0.3f), thread, FabricSampling::Best,
                     FabricNormalization::UnitPeak);
     FabricBxDF continuous(SampledSpectrum(1), FabricExponent{7.5f}, thread, FabricSampling::Paper);
     continuous.Regularize();

@@ -1,0 +1,81 @@
+#include "pbrt_ext/util/colorspace.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <stdexcept>
+
+namespace pbrt {
+
+namespace {
+
+DenselySampledSpectrum Tabulate(const Spectrum &s) {
+    DenselySampledSpectrum d;
+    for (int lambda = d.lambdaMin; lambda <= d.lambdaMax; ++lambda) d.values.push_back(s(Float(lambda)));
+    return d;
+}
+
+SquareMatrix<3> InvertOrThrow(const SquareMatrix<3> &m, const char *what) {
+    pstd::optional<SquareMatrix<3>> inv = Inverse(m);
+    if (!inv) throw std::invalid_argument(std::string("RGBColorSpace: ") + what);
+    return *inv;
+}
+
+}  // namespace
+
+RGBColorSpace::RGBColorSpace(Chromaticity r, Chromaticity g, Chromaticity b,
+                             const Spectrum &illum, const RGBToSpectrumTable *rgbToSpectrumTable)
+    : r(r), g(g), b(b), illuminant(Tabulate(illum)), rgbToSpectrumTable(rgbToSpectrumTable) {
+    XYZ W = SpectrumToXYZ(illum);
+    if (W.Y <= 0) throw std::invalid_argument("RGBColorSpace: the illuminant is black");
+    w = W.xy();
+
+    // Columns: the primaries' XYZ at Y = 1. Scaling column i by C[i] so that (1, 1, 1) maps to
+    // W gives each primary the luminance that makes the three add up to the white.
+    XYZ R = XYZ::FromxyY(r), G = XYZ::FromxyY(g), B = XYZ::FromxyY(b);
+    SquareMatrix<3> primaries(R.X, G.X, B.X, R.Y, G.Y, B.Y, R.Z, G.Z, B.Z);
+    XYZ C = InvertOrThrow(primaries, "the primaries are collinear") * W;
+    XYZFromRGB = primaries * DiagonalMatrix(C.X, C.Y, C.Z);
+    RGBFromXYZ = InvertOrThrow(XYZFromRGB, "the primaries are collinear");
+}
+
+RGBSigmoidPolynomial RGBColorSpace::ToRGBCoeffs(RGB rgb) const {
+    return (*rgbToSpectrumTable)(RGB(std::max<Float>(rgb.r, 0), std::max<Float>(rgb.g, 0),
+                                     std::max<Float>(rgb.b, 0)));
+}
+
+const RGBColorSpace &RGBColorSpace::sRGB() {
+    static const RGBColorSpace cs({0.64f, 0.33f}, {0.3f, 0.6f}, {0.15f, 0.06f},
+                                  GetNamedSpectrum("stdillum-D65").value(),
+                                  &RGBToSpectrumTable::sRGB());
+    return cs;
+}
+
+const RGBColorSpace *RGBColorSpace::GetNamed(std::string_view name) {
+    std::string lower(name);
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (lower == "srgb") return &sRGB();
+    return nullptr;
+}
+
+bool RGBColorSpace::operator==(const RGBColorSpace &cs) const {
+    auto same = [](Chromaticity a, Chromaticity b) { return a.x == b.x && a.y == b.y; };
+    return same(r, cs.r) && same(g, cs.g) && same(b, cs.b) && same(w, cs.w) &&
+           rgbToSpectrumTable == cs.rgbToSpectrumTable;
+}
+
+std::string RGBColorSpace::ToString() const {
+    char buf[256];
+    std::snprintf(buf, sizeof(buf),
+                  "[ RGBColorSpace r: (%g, %g) g: (%g, %g) b: (%g, %g) w: (%g, %g) ]", r.x, r.y,
+                  g.x, g.y, b.x, b.y, w.x, w.y);
+    return buf;
+}
+
+SquareMatrix<3> ConvertRGBColorSpace(const RGBColorSpace &from, const RGBColorSpace &to) {
+    if (from == to) return {};
+    return to.RGBFromXYZ * from.XYZFromRGB;
+}
+
+}  // namespace pbrt
