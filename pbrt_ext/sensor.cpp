@@ -4,6 +4,7 @@
 #include "pbrt_ext/util/whitebalance.h"
 
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -43,6 +44,7 @@ PixelSensor::PixelSensor(const Spectrum &r, const Spectrum &g, const Spectrum &b
                          const RGBColorSpace &outputColorSpace, const Spectrum &sensorIllum,
                          Float imagingRatio)
     : r_bar(Tabulate(r)), g_bar(Tabulate(g)), b_bar(Tabulate(b)), imagingRatio(imagingRatio) {
+    InterleaveResponse();
     std::span<const Spectrum, NSwatchReflectances> swatches = SwatchReflectances();
 
     // The camera's view of each swatch under the sensor's illuminant.
@@ -83,8 +85,16 @@ PixelSensor::PixelSensor(const Spectrum &r, const Spectrum &g, const Spectrum &b
 PixelSensor::PixelSensor(const RGBColorSpace &outputColorSpace,
                          const pstd::optional<Spectrum> &sensorIllum, Float imagingRatio)
     : r_bar(Spectra::X()), g_bar(Spectra::Y()), b_bar(Spectra::Z()), imagingRatio(imagingRatio) {
+    InterleaveResponse();
     if (sensorIllum)
         XYZFromSensorRGB = WhiteBalance(SpectrumToXYZ(*sensorIllum).xy(), outputColorSpace.w);
+}
+
+void PixelSensor::InterleaveResponse() {
+    assert(r_bar.lambdaMin == g_bar.lambdaMin && r_bar.lambdaMin == b_bar.lambdaMin);
+    response.resize(r_bar.values.size());
+    for (size_t i = 0; i < response.size(); ++i)
+        response[i] = RGB(r_bar.values[i], g_bar.values[i], b_bar.values[i]);
 }
 
 PixelSensor PixelSensor::Create(std::string_view sensorName, Float iso, Float whiteBalance,

@@ -28,6 +28,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace pbrt {
 
@@ -57,11 +58,13 @@ class PixelSensor {
 
     // The sensor's RGB for radiance L carried at wavelengths lambda: imagingRatio times the
     // average over the samples of response * L / pdf (channels with pdf 0 contribute 0).
+    // The three responses are read from one interleaved table: one lookup per wavelength on the
+    // film's path instead of three.
     RGB ToSensorRGB(SampledSpectrum L, const SampledWavelengths &lambda) const {
         L = SafeDiv(L, lambda.PDF());
-        return imagingRatio * RGB((r_bar.Sample(lambda) * L).Average(),
-                                  (g_bar.Sample(lambda) * L).Average(),
-                                  (b_bar.Sample(lambda) * L).Average());
+        RGB sum(0, 0, 0);
+        for (int i = 0; i < NSpectrumSamples; ++i) sum += Response(lambda[i]) * L[i];
+        return imagingRatio / NSpectrumSamples * sum;
     }
 
     Float ImagingRatio() const { return imagingRatio; }
@@ -70,7 +73,16 @@ class PixelSensor {
     SquareMatrix<3> XYZFromSensorRGB;
 
   private:
+    // (r_bar, g_bar, b_bar) at the nearest integer wavelength, zero outside the table.
+    RGB Response(Float lambda) const {
+        if (!(lambda >= 0)) return RGB(0, 0, 0);
+        size_t offset = size_t(int(lambda + 0.5f)) - size_t(r_bar.lambdaMin);
+        return offset < response.size() ? response[offset] : RGB(0, 0, 0);
+    }
+    void InterleaveResponse();
+
     DenselySampledSpectrum r_bar, g_bar, b_bar;
+    std::vector<RGB> response;  // r_bar, g_bar, b_bar interleaved
     Float imagingRatio;
 };
 

@@ -144,9 +144,9 @@ class RGBSigmoidPolynomial {
     RGBSigmoidPolynomial() = default;
     PBRT_CPU_GPU RGBSigmoidPolynomial(Float c0, Float c1, Float c2) : c0(c0), c1(c1), c2(c2) {}
 
-    PBRT_CPU_GPU Float operator()(Float lambda) const {
-        return s(EvaluatePolynomial(lambda, c2, c1, c0));
-    }
+    // Horner's rule without std::fma, which is a library call on x86-64 without -mfma; the
+    // sigmoid is evaluated at every texture lookup, four wavelengths at a time.
+    PBRT_CPU_GPU Float operator()(Float lambda) const { return s((c0 * lambda + c1) * lambda + c2); }
 
     // An upper bound of the spectrum over 360-830 nm: the larger end, or the vertex of the
     // polynomial where it lies inside (s is increasing, so the polynomial's maximum is the

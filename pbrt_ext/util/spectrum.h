@@ -170,13 +170,18 @@ class SampledWavelengths {
   public:
     // pbrt-v4's stratified visible sampling: one uniform u, shifted by i / NSpectrumSamples per
     // sample, each warped by SampleVisibleWavelengths.
+    // The density needs no cosh: with x = 0.85691062 - 1.82750197 u the sample is 538 - atanh(x)
+    // / 0.0072, so cosh^2(0.0072 (lambda - 538)) = 1 / (1 - x^2). atanh(x) is taken as
+    // log((1 + x) / (1 - x)) / 2: |x| < 0.98 here, where that is as accurate in absolute terms
+    // (1e-7, i.e. 1e-5 nm) and far cheaper than atanhf.
     PBRT_CPU_GPU static SampledWavelengths SampleVisible(Float u) {
         SampledWavelengths swl;
         for (int i = 0; i < NSpectrumSamples; ++i) {
             Float up = u + Float(i) / NSpectrumSamples;
             if (up > 1) up -= 1;
-            swl.lambda[i] = SampleVisibleWavelengths(up);
-            swl.pdf[i] = VisibleWavelengthsPDF(swl.lambda[i]);
+            Float x = 0.85691062f - 1.82750197f * up;
+            swl.lambda[i] = 538 - 69.4444444f * std::log((1 + x) / (1 - x));
+            swl.pdf[i] = 0.0039398042f * (1 - x * x);
         }
         return swl;
     }
