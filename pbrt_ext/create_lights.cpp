@@ -142,11 +142,7 @@ AreaLightDescription CreateAreaLight(const SceneEntity &e, const std::string &fo
     light.L = L.spectrum;
     light.scale = p.GetOneFloat("scale", 1) * L.toNits;
     light.twoSided = p.GetOneBool("twosided", false);
-    if (p.HasParameter("power")) {
-        p.GetOneFloat("power", 0);
-        WarningAt(*p.Loc("power"), "\"power\" of area lights is not supported: using \"scale\" "
-                                   "alone");
-    }
+    light.power = p.GetOneFloat("power", -1);
     if (p.HasParameter("filename")) {
         p.GetOneString("filename", "");
         WarningAt(*p.Loc("filename"), "image area lights are not supported: emitting \"L\"");

@@ -30,9 +30,15 @@ template <typename ShapeFor>
 int SceneBuilder::AddAreaLights(const AreaLightDescription &emission, int count,
                                 ShapeFor shapeFor) {
     int first = int(scene->lights.size());
-    for (int i = 0; i < count; ++i)
-        scene->lights.push_back(
-            DiffuseAreaLight(shapeFor(i), emission.L, emission.scale, emission.twoSided));
+    for (int i = 0; i < count; ++i) {
+        Shape shape = shapeFor(i);
+        Float scale = emission.scale;
+        if (emission.power > 0) {
+            Float k = Pi * shape.Area() * (emission.twoSided ? 2 : 1);
+            scale *= k > 0 ? emission.power / k : 0;
+        }
+        scene->lights.push_back(DiffuseAreaLight(std::move(shape), emission.L, scale, emission.twoSided));
+    }
     return first;
 }
 

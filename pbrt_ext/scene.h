@@ -78,6 +78,9 @@ struct AreaLightDescription {
     Spectrum L = Spectrum(1.f);
     Float scale = 1;
     bool twoSided = false;
+    // pbrt-v4's "power" (> 0: set): each shape's scale is multiplied by power / (pi area (2 if
+    // two-sided)), so that each emitting shape (each triangle of a mesh, as in pbrt-v4) emits it.
+    Float power = -1;
 };
 
 class SceneBuilder {

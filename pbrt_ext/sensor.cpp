@@ -13,12 +13,6 @@ namespace pbrt {
 
 namespace {
 
-DenselySampledSpectrum Tabulate(const Spectrum &s) {
-    DenselySampledSpectrum d;
-    for (int lambda = d.lambdaMin; lambda <= d.lambdaMax; ++lambda) d.values.push_back(s(Float(lambda)));
-    return d;
-}
-
 // The responses b1, b2, b3 to reflectance refl lit by illum, relative to b2's response to illum
 // itself (pbrt-v4's PixelSensor::ProjectReflectance): a white reflector gives 1 in the middle
 // channel whatever the illuminant's scale. Sums over integer wavelengths in [Lambda_min,
@@ -43,7 +37,7 @@ std::array<Float, 3> ProjectReflectance(const Spectrum &refl, const Illum &illum
 PixelSensor::PixelSensor(const Spectrum &r, const Spectrum &g, const Spectrum &b,
                          const RGBColorSpace &outputColorSpace, const Spectrum &sensorIllum,
                          Float imagingRatio)
-    : r_bar(Tabulate(r)), g_bar(Tabulate(g)), b_bar(Tabulate(b)), imagingRatio(imagingRatio) {
+    : r_bar(DenselySample(r)), g_bar(DenselySample(g)), b_bar(DenselySample(b)), imagingRatio(imagingRatio) {
     InterleaveResponse();
     std::span<const Spectrum, NSwatchReflectances> swatches = SwatchReflectances();
 

@@ -124,6 +124,10 @@ Spectrum Spectrum::PiecewiseLinear(std::span<const Float> interleaved, bool norm
     return Spectrum(std::shared_ptr<const PiecewiseLinearSpectrum>(std::move(scaled)));
 }
 
+DenselySampledSpectrum DenselySample(const Spectrum &s) {
+    return *Tabulate([&s](Float l) { return s(l); });
+}
+
 Spectrum Spectrum::DenselySampled(const Spectrum &s) {
     return Spectrum(Tabulate([&s](Float l) { return s(l); }));
 }

@@ -183,6 +183,10 @@ class Spectrum {
     Variant spectrum;
 };
 
+// s at every integer wavelength in [Lambda_min, Lambda_max] (pbrt-v4's DenselySampledSpectrum
+// constructor).
+DenselySampledSpectrum DenselySample(const Spectrum &s);
+
 // The CIE 1931 colour matching functions, densely sampled (CIE_Y_integral, the sum of Y at 1 nm
 // steps, is in util/ciedata.h).
 namespace Spectra {

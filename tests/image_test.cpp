@@ -2,11 +2,14 @@
 // wrap modes and lookups, and errors that name the file and leave no partial output.
 #include "pbrt_ext/util/image.h"
 
+#include "pbrt_ext/util/colorspace.h"
+
 #include <ImfChannelList.h>
 #include <ImfDoubleAttribute.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfIntAttribute.h>
+#include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 #include <gtest/gtest.h>
 
@@ -80,6 +83,33 @@ TEST_F(ImageFiles, ExrRoundTripIsExactWithMetadata) {
     EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("integrator").value(), "path");
     EXPECT_EQ(h.channels().findChannel("R")->type, Imf::FLOAT);
     EXPECT_EQ(FilesInDir(), 1);  // no temporary left behind
+}
+
+// The colour space goes into the EXR as its standard chromaticities (what other tools read) and
+// as a name.
+TEST_F(ImageFiles, ExrRecordsTheColorSpace) {
+    ImageMetadata md;
+    md.colorSpace = &RGBColorSpace::sRGB();
+    std::string path = Path("srgb.exr");
+    TestImage(Point2i(4, 3), 1, 2).Write(path, md);
+    Imf::InputFile file(path.c_str());
+    const Imf::Header &h = file.header();
+    EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("colorSpace").value(), "srgb");
+    ASSERT_TRUE(Imf::hasChromaticities(h));
+    const Imf::Chromaticities &c = Imf::chromaticities(h);
+    const RGBColorSpace &cs = RGBColorSpace::sRGB();
+    EXPECT_FLOAT_EQ(c.red.x, cs.r.x);
+    EXPECT_FLOAT_EQ(c.green.y, cs.g.y);
+    EXPECT_FLOAT_EQ(c.blue.x, cs.b.x);
+    EXPECT_FLOAT_EQ(c.white.x, cs.w.x);
+    EXPECT_FLOAT_EQ(c.white.y, cs.w.y);
+    EXPECT_NEAR(c.white.x, 0.3127, 5e-4);  // D65
+    EXPECT_NEAR(c.red.x, 0.64, 1e-6);      // Rec. 709 red
+
+    std::string plain = Path("plain.exr");
+    TestImage(Point2i(4, 3), 1, 2).Write(plain, ImageMetadata{});
+    Imf::InputFile none(plain.c_str());
+    EXPECT_FALSE(Imf::hasChromaticities(none.header()));
 }
 
 TEST_F(ImageFiles, ExrCropSetsDataAndDisplayWindows) {

@@ -1,6 +1,6 @@
 // Renders against the values pbrt-v4 itself gives for the same scenes: a grey and a saturated
 // red diffuse plane under "rgb L" [1 1 1], a grey plane under a blackbody sky seen by a Canon EOS
-// 100D at ISO 150, and an "rgb L" emitter seen directly. They exercise the RGB albedo and
+// 100D at ISO 150, and an "rgb L" emitter seen directly, by its radiance and by its "power". They exercise the RGB albedo and
 // illuminant spectra, the photometric light normalization, the CIE 1931 and camera sensors and
 // the imaging ratio, end to end.
 //
@@ -50,6 +50,10 @@ const Reference kReferences[] = {
     {"rgb_emitter", "",
      R"(AreaLightSource "diffuse" "rgb L" [0.9 0.3 0.1])",
      {0.899940, 0.299652, 0.099852}, {1.8e-4, 2.6e-5, 6.6e-5}},
+    // "power" 10 W over the 16 m^2 one-sided plane: radiance 10 / (16 pi) times the colour.
+    {"rgb_emitter_power", "",
+     R"(AreaLightSource "diffuse" "rgb L" [0.9 0.3 0.1] "float power" 10)",
+     {0.179038, 0.059614, 0.019865}, {3.6e-5, 5.2e-6, 1.3e-5}},
 };
 
 std::string WriteScene(const Reference &r) {

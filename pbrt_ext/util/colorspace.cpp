@@ -9,12 +9,6 @@ namespace pbrt {
 
 namespace {
 
-DenselySampledSpectrum Tabulate(const Spectrum &s) {
-    DenselySampledSpectrum d;
-    for (int lambda = d.lambdaMin; lambda <= d.lambdaMax; ++lambda) d.values.push_back(s(Float(lambda)));
-    return d;
-}
-
 SquareMatrix<3> InvertOrThrow(const SquareMatrix<3> &m, const char *what) {
     pstd::optional<SquareMatrix<3>> inv = Inverse(m);
     if (!inv) throw std::invalid_argument(std::string("RGBColorSpace: ") + what);
@@ -25,7 +19,7 @@ SquareMatrix<3> InvertOrThrow(const SquareMatrix<3> &m, const char *what) {
 
 RGBColorSpace::RGBColorSpace(Chromaticity r, Chromaticity g, Chromaticity b,
                              const Spectrum &illum, const RGBToSpectrumTable *rgbToSpectrumTable)
-    : r(r), g(g), b(b), illuminant(Tabulate(illum)), rgbToSpectrumTable(rgbToSpectrumTable) {
+    : r(r), g(g), b(b), illuminant(DenselySample(illum)), rgbToSpectrumTable(rgbToSpectrumTable) {
     XYZ W = SpectrumToXYZ(illum);
     if (W.Y <= 0) throw std::invalid_argument("RGBColorSpace: the illuminant is black");
     w = W.xy();
