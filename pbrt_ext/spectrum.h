@@ -30,6 +30,14 @@ class RGBColorSpace;
 // pbrt-v4's SpectrumType: how an RGB value is turned into a spectrum.
 enum class SpectrumType { Albedo, Unbounded, Illuminant };
 
+// A spectrum's values at each of the wavelengths.
+template <typename S>
+SampledSpectrum SampleEach(const S &s, const SampledWavelengths &lambda) {
+    SampledSpectrum v;
+    for (int i = 0; i < NSpectrumSamples; ++i) v[i] = s(lambda[i]);
+    return v;
+}
+
 struct ConstantSpectrum {
     Float c;
     Float operator()(Float) const { return c; }
@@ -50,11 +58,7 @@ struct DenselySampledSpectrum {
         if (offset < 0 || offset >= int(values.size())) return 0;
         return values[size_t(offset)];
     }
-    SampledSpectrum Sample(const SampledWavelengths &lambda) const {
-        SampledSpectrum s;
-        for (int i = 0; i < NSpectrumSamples; ++i) s[i] = (*this)(lambda[i]);
-        return s;
-    }
+    SampledSpectrum Sample(const SampledWavelengths &lambda) const { return SampleEach(*this, lambda); }
     Float MaxValue() const;
 };
 
@@ -63,11 +67,7 @@ struct PiecewiseLinearSpectrum {
     std::vector<Float> lambdas, values;
 
     Float operator()(Float lambda) const;
-    SampledSpectrum Sample(const SampledWavelengths &lambda) const {
-        SampledSpectrum s;
-        for (int i = 0; i < NSpectrumSamples; ++i) s[i] = (*this)(lambda[i]);
-        return s;
-    }
+    SampledSpectrum Sample(const SampledWavelengths &lambda) const { return SampleEach(*this, lambda); }
     Float MaxValue() const;
 };
 
@@ -75,11 +75,7 @@ struct PiecewiseLinearSpectrum {
 struct BlackbodySpectrum {
     explicit BlackbodySpectrum(Float T);
     Float operator()(Float lambda) const;
-    SampledSpectrum Sample(const SampledWavelengths &lambda) const {
-        SampledSpectrum s;
-        for (int i = 0; i < NSpectrumSamples; ++i) s[i] = (*this)(lambda[i]);
-        return s;
-    }
+    SampledSpectrum Sample(const SampledWavelengths &lambda) const { return SampleEach(*this, lambda); }
     Float MaxValue() const { return 1; }
 
     Float T, normalizationFactor;
@@ -89,11 +85,7 @@ struct BlackbodySpectrum {
 struct RGBAlbedoSpectrum {
     RGBAlbedoSpectrum(const RGBColorSpace &cs, RGB rgb);
     Float operator()(Float lambda) const { return rsp(lambda); }
-    SampledSpectrum Sample(const SampledWavelengths &lambda) const {
-        SampledSpectrum s;
-        for (int i = 0; i < NSpectrumSamples; ++i) s[i] = rsp(lambda[i]);
-        return s;
-    }
+    SampledSpectrum Sample(const SampledWavelengths &lambda) const { return SampleEach(rsp, lambda); }
     Float MaxValue() const { return rsp.MaxValue(); }
 
     RGBSigmoidPolynomial rsp;
@@ -104,11 +96,7 @@ struct RGBAlbedoSpectrum {
 struct RGBUnboundedSpectrum {
     RGBUnboundedSpectrum(const RGBColorSpace &cs, RGB rgb);
     Float operator()(Float lambda) const { return scale * rsp(lambda); }
-    SampledSpectrum Sample(const SampledWavelengths &lambda) const {
-        SampledSpectrum s;
-        for (int i = 0; i < NSpectrumSamples; ++i) s[i] = scale * rsp(lambda[i]);
-        return s;
-    }
+    SampledSpectrum Sample(const SampledWavelengths &lambda) const { return scale * SampleEach(rsp, lambda); }
     Float MaxValue() const { return scale * rsp.MaxValue(); }
 
     Float scale = 1;
@@ -121,10 +109,7 @@ struct RGBIlluminantSpectrum {
     RGBIlluminantSpectrum(const RGBColorSpace &cs, RGB rgb);
     Float operator()(Float lambda) const { return scale * rsp(lambda) * (*illuminant)(lambda); }
     SampledSpectrum Sample(const SampledWavelengths &lambda) const {
-        SampledSpectrum s;
-        for (int i = 0; i < NSpectrumSamples; ++i)
-            s[i] = scale * rsp(lambda[i]) * (*illuminant)(lambda[i]);
-        return s;
+        return scale * SampleEach(rsp, lambda) * illuminant->Sample(lambda);
     }
     Float MaxValue() const { return scale * rsp.MaxValue() * illuminant->MaxValue(); }
 
