@@ -4,6 +4,7 @@
 #include "pbrt_ext/sceneloader.h"
 #include "pbrt_ext/util/error.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -149,6 +150,27 @@ Shape "sphere"
 )");
     EXPECT_EQ(LoadError(file2), file2 + ":8:19: error: unknown fabric sampler \"magic\": expected "
                                         "uniform, cosine, paper, truncatedsinphi or best");
+}
+
+// The film's sensor and the camera's shutter set the imaging ratio (pbrt-v4's PixelSensor): an
+// unknown sensor, a negative white balance or an empty shutter interval is an error where written.
+TEST(SceneLoaderErrors, BadSensorAndShutterAreReportedWhereWritten) {
+    auto scene = [](const std::string &name, const std::string &camera, const std::string &film) {
+        return WriteScene(name, "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\" " + camera +
+                                    "\nFilm \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 8 " +
+                                    film + "\nWorldBegin\n");
+    };
+    std::string sensor = scene("badsensor.pbrt", "", R"("string sensor" "canon_eos_999")");
+    EXPECT_THAT(LoadError(sensor), testing::StartsWith(sensor + ":3:60: error: unknown sensor "
+                                                                "\"canon_eos_999\"; expected one of: "
+                                                                "cie1931, canon_eos_100d,"));
+    std::string wb = scene("badwb.pbrt", "", R"("float whitebalance" -5)");
+    EXPECT_EQ(LoadError(wb), wb + ":3:1: error: PixelSensor: \"whitebalance\" must be a "
+                                  "temperature in K (or 0 for none), not -5.000000");
+    std::string shutter = scene("badshutter.pbrt", R"("float shutteropen" 1 "float shutterclose" 0.5)", "");
+    EXPECT_EQ(LoadError(shutter), shutter + ":2:44: error: the shutter interval -0.5 is not "
+                                            "positive; expected \"shutterclose\" after "
+                                            "\"shutteropen\"");
 }
 
 TEST(SceneLoaderErrors, UnusedAndUnknownAreErrors) {
