@@ -31,7 +31,8 @@ Emission GetEmission(const ParameterDictionary &p, const std::string &name, cons
     Spectrum s = GetSpectrum(p, name, Spectrum::DenselySampled(RGBColorSpace::sRGB().illuminant),
                              SpectrumType::Illuminant, folder);
     Float nits = SpectrumToPhotometric(s);
-    return {s.IsConstant() ? s : Spectrum::DenselySampled(s), nits > 0 ? 1 / nits : 0};
+    // Tabulated here, so that every triangle of an emissive mesh shares one table.
+    return {TabulatedForLookup(s), nits > 0 ? 1 / nits : 0};
 }
 
 // The rotation taking +z to w (columns: a frame around w).

@@ -36,13 +36,6 @@ Point3f PointOutsideScene(Point3f p, Vector3f wi, Float sceneRadius) {
     return p + wi * (2 * sceneRadius);
 }
 
-// Emission spectra are tabulated once, so that sampling one is a table read; a constant needs
-// no table, and a table is shared, not copied (every triangle of an emissive mesh is a light).
-Spectrum Tabulated(const Spectrum &s) {
-    if (s.IsConstant() || s.Get<std::shared_ptr<const DenselySampledSpectrum>>()) return s;
-    return Spectrum::DenselySampled(s);
-}
-
 // Power of constant radiance L arriving from all directions (or from one, for distant
 // lights) onto the scene's bounding disk, as pbrt-v4 approximates it.
 Float DiskArea(Float sceneRadius) { return Pi * Sqr(sceneRadius); }
@@ -53,7 +46,7 @@ Float DiskArea(Float sceneRadius) { return Pi * Sqr(sceneRadius); }
 // PointLight
 
 PointLight::PointLight(const Transform &worldFromLight, Spectrum I, Float scale)
-    : pLight(worldFromLight(Point3f(0, 0, 0))), I(Tabulated(I)), scale(scale) {}
+    : pLight(worldFromLight(Point3f(0, 0, 0))), I(TabulatedForLookup(I)), scale(scale) {}
 
 SampledSpectrum PointLight::Phi(const SampledWavelengths &lambda) const {
     return 4 * Pi * scale * I.Sample(lambda);
@@ -78,7 +71,7 @@ std::string PointLight::ToString() const {
 
 SpotLight::SpotLight(const Transform &worldFromLight, Spectrum I, Float scale,
                      Float totalWidth, Float falloffStart)
-    : worldFromLight(worldFromLight), Iemit(Tabulated(I)), scale(scale),
+    : worldFromLight(worldFromLight), Iemit(TabulatedForLookup(I)), scale(scale),
       cosFalloffStart(std::cos(Radians(falloffStart))),
       cosFalloffEnd(std::cos(Radians(totalWidth))) {}
 
@@ -119,7 +112,7 @@ std::string SpotLight::ToString() const {
 // DistantLight
 
 DistantLight::DistantLight(const Transform &worldFromLight, Spectrum Lemit, Float scale)
-    : wLight(Normalize(worldFromLight(Vector3f(0, 0, 1)))), Lemit(Tabulated(Lemit)), scale(scale) {}
+    : wLight(Normalize(worldFromLight(Vector3f(0, 0, 1)))), Lemit(TabulatedForLookup(Lemit)), scale(scale) {}
 
 void DistantLight::Preprocess(const Bounds3f &sceneBounds) {
     Point3f center;
@@ -145,7 +138,7 @@ std::string DistantLight::ToString() const {
 // DiffuseAreaLight
 
 DiffuseAreaLight::DiffuseAreaLight(Shape shape, Spectrum Lemit, Float scale, bool twoSided)
-    : shape(std::move(shape)), area(this->shape.Area()), Lemit(Tabulated(Lemit)), scale(scale),
+    : shape(std::move(shape)), area(this->shape.Area()), Lemit(TabulatedForLookup(Lemit)), scale(scale),
       twoSided(twoSided) {}
 
 // Lambertian emission: pi L per unit area and side.
@@ -187,7 +180,7 @@ std::string DiffuseAreaLight::ToString() const {
 // UniformInfiniteLight
 
 UniformInfiniteLight::UniformInfiniteLight(Spectrum Lemit, Float scale)
-    : Lemit(Tabulated(Lemit)), scale(scale) {}
+    : Lemit(TabulatedForLookup(Lemit)), scale(scale) {}
 
 void UniformInfiniteLight::Preprocess(const Bounds3f &sceneBounds) {
     sceneBounds.BoundingSphere(&sceneCenter, &sceneRadius);

@@ -132,6 +132,11 @@ Spectrum Spectrum::DenselySampled(const Spectrum &s) {
     return Spectrum(Tabulate([&s](Float l) { return s(l); }));
 }
 
+Spectrum TabulatedForLookup(const Spectrum &s) {
+    if (s.IsConstant() || s.Get<std::shared_ptr<const DenselySampledSpectrum>>()) return s;
+    return Spectrum::DenselySampled(s);
+}
+
 std::string Spectrum::ToString() const {
     char buf[160];
     struct Describe {

@@ -172,6 +172,10 @@ class Spectrum {
 // constructor).
 DenselySampledSpectrum DenselySample(const Spectrum &s);
 
+// s as a spectrum looked up many times (a light's emission): tabulated at 1 nm unless it is a
+// constant or already a table, which is then shared, not copied.
+Spectrum TabulatedForLookup(const Spectrum &s);
+
 // The CIE 1931 colour matching functions, densely sampled (CIE_Y_integral, the sum of Y at 1 nm
 // steps, is in util/ciedata.h).
 namespace Spectra {
