@@ -76,11 +76,12 @@ FabricMaterial CreateFabricMaterial(const ParameterDictionary &p, TextureResolve
         m.sampling = *overrides.fabricSampler;
     if (p.HasParameter("diffuse"))
         m.diffuse = textures.GetSpectrumTexture(p, "diffuse", Spectrum(0.f), SpectrumType::Albedo);
-    if (normalization == "unitpeak")
-        m.normalization = FabricNormalization::UnitPeak;
-    else if (normalization != "paper")
-        throw ParseError(*p.Loc("normalization"), "unknown fabric normalization \"" +
-                                                      normalization + "\": expected paper or unitpeak");
+    std::string error;
+    pstd::optional<FabricNormalization> norm = FabricOptionFromName<FabricNormalization>(
+        "normalization", kFabricNormalizationNames, normalization, &error);
+    if (!norm)
+        throw ParseError(*p.Loc("normalization"), error);
+    m.normalization = *norm;
     return m;
 }
 

@@ -178,17 +178,12 @@ int MixMaterial::Choose(const SurfaceInteraction &si) const {
 }
 
 FabricSampling ParseFabricSampling(const std::string &name) {
-    constexpr std::pair<const char *, FabricSampling> names[] = {
-        {"uniform", FabricSampling::Uniform},
-        {"cosine", FabricSampling::Cosine},
-        {"paper", FabricSampling::Paper},
-        {"truncatedsinphi", FabricSampling::TruncatedSinPhi},
-        {"best", FabricSampling::Best}};
-    for (auto [n, sampling] : names)
-        if (name == n)
-            return sampling;
-    throw std::invalid_argument("unknown fabric sampler \"" + name +
-                                "\": expected uniform, cosine, paper, truncatedsinphi or best");
+    std::string error;
+    pstd::optional<FabricSampling> sampling =
+        FabricOptionFromName<FabricSampling>("sampler", kFabricSamplingNames, name, &error);
+    if (!sampling)
+        throw std::invalid_argument(error);
+    return *sampling;
 }
 
 }  // namespace pbrt

@@ -32,6 +32,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <string>
 
@@ -51,6 +52,25 @@ enum class FabricNormalization {
     Paper,    // 1 / I_o(n): the paper's; directional albedo ≤ 2/π for tangent threads
     UnitPeak  // the largest directional albedo over all wi is 1 (never above), for every n and elevation
 };
+
+// The names scene files give them ("string sampler", "string normalization"), in the enums' order.
+inline constexpr const char *kFabricSamplingNames[] = {"uniform", "cosine", "paper", "truncatedsinphi",
+                                                       "best"};
+inline constexpr const char *kFabricNormalizationNames[] = {"paper", "unitpeak"};
+
+// The option a scene file names, or nullopt and *error set to the message every renderer that reads
+// "fabric" materials reports (pbrt_ext and the ports), e.g. `unknown fabric sampler "x": expected ...`.
+template <typename Option, size_t N>
+pstd::optional<Option> FabricOptionFromName(const char *what, const char *const (&names)[N],
+                                            const std::string &name, std::string *error) {
+    for (size_t i = 0; i < N; ++i)
+        if (name == names[i])
+            return Option(i);
+    *error = std::string("unknown fabric ") + what + " \"" + name + "\": expected ";
+    for (size_t i = 0; i < N; ++i)
+        *error += std::string(names[i]) + (i + 2 < N ? ", " : (i + 1 < N ? " or " : ""));
+    return {};
+}
 
 // ∫_0^{π/4} (1 - sin x)^n q(x) dx for q a polynomial in cos 2x given by its coefficients in
 // u = 1 - sin x (cos 2x = -1 + 4u - 2u²). With u as variable the integrand is u^(n - 1/2) q(u) / √(2 - u);
@@ -324,8 +344,12 @@ PBRT_CPU_GPU inline FabricBxDF::HalfAngle FabricBxDF::Fiber(Vector3f wo, Vector3
     h.cosThetaI = CosLatitude(wi);
     // Half-angle formulas with D = 2 √((1 + cos θo)(1 + cos θi)) >= 2; 1 - sin θo sin θi is formed
     // without cancellation when the two latitudes share a sign. Every expression is symmetric in
-    // (o, i), so f is reciprocal to the last bit.
-    Float so = h.sinThetaO, si = h.sinThetaI, co = h.cosThetaO, ci = h.cosThetaI;
+    // (o, i), and it is evaluated on the pair in a fixed order, so f is reciprocal to the last bit
+    // even where the compiler fuses a * b + c into one rounding (pbrt-v4 builds with -march=native).
+    bool inOrder = h.sinThetaO < h.sinThetaI ||
+                   (h.sinThetaO == h.sinThetaI && h.cosThetaO <= h.cosThetaI);
+    Float so = inOrder ? h.sinThetaO : h.sinThetaI, si = inOrder ? h.sinThetaI : h.sinThetaO;
+    Float co = inOrder ? h.cosThetaO : h.cosThetaI, ci = inOrder ? h.cosThetaI : h.cosThetaO;
     Float D = 2 * std::sqrt((1 + co) * (1 + ci));
     Float sMax = std::max(std::abs(so), std::abs(si)), sMin = std::min(std::abs(so), std::abs(si));
     Float oneMinusSoSi = so * si > 0 ? (1 - sMax) + sMax * (1 - sMin) : 1 + sMax * sMin;
@@ -581,14 +605,13 @@ PBRT_CPU_GPU inline Float FabricBxDF::UnitPeakElevationFactor(Float n, Float sin
 }
 
 inline std::string FabricBxDF::ToString() const {
-    static const char *samplingNames[] = {"uniform", "cosine", "paper", "truncatedsinphi", "best"};
     char buf[512];
     std::snprintf(buf, sizeof(buf),
                   "[ FabricBxDF color: [ %g, %g, %g ] n: %g normalization: %s scale: %g "
                   "thread: [ %g, %g, %g ] sampling: %s ]",
                   color[0], color[1], color[2], n,
-                  normalization == FabricNormalization::Paper ? "paper" : "unitpeak", scale, T.x,
-                  T.y, T.z, samplingNames[int(sampling)]);
+                  kFabricNormalizationNames[int(normalization)], scale, T.x, T.y, T.z,
+                  kFabricSamplingNames[int(sampling)]);
     return buf;
 }
 
