@@ -61,6 +61,12 @@ pstd::optional<LightLiSample> PointLight::SampleLi(LightSampleContext ctx, Point
     return LightLiSample{scale * I.Sample(lambda) / r2, wi, 1, pLight, Normal3f(0, 0, 0)};
 }
 
+// Isotropic: every direction from one point (pbrt-v4's bounds: cos(pi) and cos(pi/2)).
+pstd::optional<LightBounds> PointLight::Bounds() const {
+    Float phi = 4 * Pi * scale * I.MaxValue();
+    return LightBounds(Bounds3f(pLight, pLight), Vector3f(0, 0, 1), phi, -1, 0, false);
+}
+
 std::string PointLight::ToString() const {
     return "[ PointLight p: " + Format(pLight) + " I: " + I.ToString() +
            " scale: " + Format(scale) + " ]";
@@ -98,6 +104,18 @@ pstd::optional<LightLiSample> SpotLight::SampleLi(LightSampleContext ctx, Point2
     if (!Li)
         return {};
     return LightLiSample{Li, wi, 1, p, Normal3f(0, 0, 0)};
+}
+
+// The axis with the full cone as the normals' spread, and the falloff band as emission spread.
+pstd::optional<LightBounds> SpotLight::Bounds() const {
+    Point3f p = worldFromLight(Point3f(0, 0, 0));
+    Vector3f w = Normalize(worldFromLight(Vector3f(0, 0, 1)));
+    Float phi = scale * Iemit.MaxValue() * 4 * Pi;
+    Float cosTheta_e = std::cos(std::acos(cosFalloffEnd) - std::acos(cosFalloffStart));
+    // Slack for the rounding of the importance's cosines where the band is thin (pbrt-v4).
+    if (cosTheta_e == 1 && cosFalloffEnd != cosFalloffStart)
+        cosTheta_e = 0.999f;
+    return LightBounds(Bounds3f(p, p), w, phi, cosFalloffStart, cosTheta_e, false);
 }
 
 std::string SpotLight::ToString() const {
@@ -168,6 +186,38 @@ pstd::optional<LightLiSample> DiffuseAreaLight::SampleLi(LightSampleContext ctx,
 
 Float DiffuseAreaLight::PDF_Li(LightSampleContext ctx, Vector3f wi, bool) const {
     return shape.PDF(ctx, wi);
+}
+
+namespace {
+
+// The directions the shape's emitting normals take, read from the shape's own samples so that
+// they are oriented exactly as its intersections are (the side L() emits toward). Triangles and
+// disks are flat, a bilinear patch's normal stays within the cone of its corner normals (the
+// cross product of its tangents is bilinear in u and v), and a sphere faces every way.
+DirectionCone NormalBounds(const Shape &shape) {
+    if (shape.CastOrNullptr<Sphere>())
+        return DirectionCone::EntireSphere();
+    std::vector<Point2f> at = {Point2f(0.5f, 0.5f)};
+    if (shape.CastOrNullptr<BilinearPatch>())
+        at = {Point2f(0, 0), Point2f(OneMinusEpsilon, 0), Point2f(0, OneMinusEpsilon),
+              Point2f(OneMinusEpsilon, OneMinusEpsilon)};
+    DirectionCone cone;
+    for (Point2f u : at) {
+        pstd::optional<ShapeSample> ss = shape.Sample(u);
+        if (!ss || LengthSquared(ss->intr.n) == 0)
+            return DirectionCone::EntireSphere();
+        cone = Union(cone, DirectionCone(Vector3f(ss->intr.n)));
+    }
+    return cone;
+}
+
+}  // namespace
+
+// pbrt-v4's: power pi L area (one side), the shape's normal cone, emission over a hemisphere.
+pstd::optional<LightBounds> DiffuseAreaLight::Bounds() const {
+    Float phi = Lemit.MaxValue() * scale * area * Pi;
+    DirectionCone normals = NormalBounds(shape);
+    return LightBounds(shape.Bounds(), normals.w, phi, normals.cosTheta, 0, twoSided);
 }
 
 std::string DiffuseAreaLight::ToString() const {

@@ -12,6 +12,8 @@
 //     light may leave directions BSDF sampling covers well to that strategy (pbrt-v4): the uniform
 //     infinite light then samples nothing, and the image light samples a compensated density.
 //   - Phi() is the emitted power; distant and infinite lights need Preprocess(sceneBounds) first.
+//   - Bounds() bounds where a light is, what it emits and in which directions, for the BVH light
+//     sampler; distant and infinite lights have none (they reach everywhere).
 //   - Values are never negative, NaN or infinite: images are clamped at zero.
 //   - Emission is spectral: each light samples its spectrum at the path's wavelengths. Spectra
 //     other than constants are tabulated at 1 nm when the light is made (pbrt-v4's
@@ -21,6 +23,7 @@
 #pragma once
 
 #include "pbrt_ext/interaction.h"
+#include "pbrt_ext/lightbounds.h"
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/ray.h"
 #include "pbrt_ext/shapes.h"
@@ -63,6 +66,7 @@ class PointLight {
                                            const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext, Vector3f, bool = false) const { return 0; }
+    pstd::optional<LightBounds> Bounds() const;
     std::string ToString() const;
 
   private:
@@ -85,6 +89,7 @@ class SpotLight {
                                            const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext, Vector3f, bool = false) const { return 0; }
+    pstd::optional<LightBounds> Bounds() const;
     std::string ToString() const;
 
     // Intensity toward the light-space direction w (unit).
@@ -134,6 +139,7 @@ class DiffuseAreaLight {
     // Radiance leaving the surface point p with normal n toward w.
     SampledSpectrum L(Point3f p, Normal3f n, Point2f uv, Vector3f w,
                       const SampledWavelengths &lambda) const;
+    pstd::optional<LightBounds> Bounds() const;
     std::string ToString() const;
 
   private:
@@ -217,6 +223,14 @@ class Light {
     }
     SampledSpectrum Phi(const SampledWavelengths &lambda) const {
         return std::visit([&](const auto &l) { return l.Phi(lambda); }, light);
+    }
+    pstd::optional<LightBounds> Bounds() const {
+        return std::visit([](const auto &l) -> pstd::optional<LightBounds> {
+            if constexpr (requires { l.Bounds(); })
+                return l.Bounds();
+            else
+                return {};
+        }, light);
     }
     void Preprocess(const Bounds3f &sceneBounds) {
         std::visit([&](auto &l) {

@@ -1,0 +1,43 @@
+// Bounds on what a light can send toward a region (pbrt-v4's LightBounds): where it is, how much
+// it emits, and the directions it emits in. The BVH light sampler (lightsamplers.h) keeps one per
+// node and estimates from it how much each subtree can contribute at a shading point.
+#pragma once
+
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/bounds.h"
+#include "pbrt_ext/util/directioncone.h"
+#include "pbrt_ext/util/vecmath.h"
+
+#include <string>
+
+namespace pbrt {
+
+struct LightBounds {
+    Bounds3f bounds;
+    Vector3f w;               // the axis of the emitters' normals (unit)
+    Float phi = 0;            // an upper bound of the emitted power
+    Float cosTheta_o = 1;     // the normals lie within acos(cosTheta_o) of w
+    Float cosTheta_e = 0;     // each surface emits within acos(cosTheta_e) of its normal
+    bool twoSided = false;    // emits along -normal too
+
+    LightBounds() = default;
+    LightBounds(const Bounds3f &bounds, Vector3f w, Float phi, Float cosTheta_o, Float cosTheta_e,
+                bool twoSided)
+        : bounds(bounds), w(Normalize(w)), phi(phi), cosTheta_o(cosTheta_o),
+          cosTheta_e(cosTheta_e), twoSided(twoSided) {}
+
+    Point3f Centroid() const { return (bounds.pMin + bounds.pMax) / 2; }
+
+    // An estimate, conservative in direction, of what the lights could contribute at p (surface
+    // normal n; zero n for a point in a medium): phi over the clamped squared distance, times the
+    // cosine of the smallest angle between the emission cone and the directions to p, times the
+    // smallest incident cosine at p. Zero only where no light of the bounds can reach p's side.
+    Float Importance(Point3f p, Normal3f n) const;
+
+    std::string ToString() const;
+};
+
+// Bounds of both; bounds without power leave the other unchanged.
+LightBounds Union(const LightBounds &a, const LightBounds &b);
+
+}  // namespace pbrt
