@@ -308,17 +308,11 @@ PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrid
     options.regularize = p.GetOneBool("regularize", false);
     options.strategy = overrides.strategy.value_or(PathStrategy::MIS);
     std::string sampler = p.GetOneString("lightsampler", "bvh");
-    if (sampler == "bvh") {
-        // The same image in expectation; only where the noise falls differs.
-        if (p.HasParameter("lightsampler"))
-            WarningAt(*p.Loc("lightsampler"),
-                      "light sampler \"bvh\" is not supported: using \"power\" instead");
-        sampler = "power";
-    } else if (sampler != "power" && sampler != "uniform") {
+    if (sampler != "bvh" && sampler != "power" && sampler != "uniform") {
         throw ParseError(*p.Loc("lightsampler"), "unknown light sampler \"" + sampler +
                                                      "\": expected bvh, power or uniform");
     }
-    *lightSampler = sampler;
+    *lightSampler = overrides.lightSampler.value_or(sampler);
     if (supported)
         p.ReportUnused();
     return options;

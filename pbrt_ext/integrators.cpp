@@ -59,7 +59,7 @@ SampledSpectrum PathIntegrator::Li(Ray ray, SampledWavelengths &lambda, Sampler 
                 SampledSpectrum Le = light.Le(ray, lambda);
                 if (!Le)
                     continue;
-                Float pdfLight = lightSampled ? scene.lightSampler.PMF(index) *
+                Float pdfLight = lightSampled ? scene.lightSampler.PMF(prevCtx, index) *
                                                     light.PDF_Li(prevCtx, ray.d, AllowIncompletePDF())
                                               : 0;
                 L += beta * Le * BSDFHitWeight(lightSampled, pdfBSDF, pdfLight);
@@ -71,7 +71,7 @@ SampledSpectrum PathIntegrator::Li(Ray ray, SampledWavelengths &lambda, Sampler 
             const Light &light = scene.lights[si.areaLightIndex];
             SampledSpectrum Le = light.L(si.p, si.n, si.uv, -ray.d, lambda);
             if (Le) {
-                Float pdfLight = lightSampled ? scene.lightSampler.PMF(si.areaLightIndex) *
+                Float pdfLight = lightSampled ? scene.lightSampler.PMF(prevCtx, si.areaLightIndex) *
                                                     light.PDF_Li(prevCtx, ray.d, AllowIncompletePDF())
                                               : 0;
                 L += beta * Le * BSDFHitWeight(lightSampled, pdfBSDF, pdfLight);
@@ -127,7 +127,7 @@ SampledSpectrum PathIntegrator::SampleLd(const SurfaceInteraction &si, const BSD
     LightSampleContext ctx(si);
     Float uLight = sampler.Get1D();
     Point2f u = sampler.Get2D();
-    pstd::optional<SampledLight> sampled = scene.lightSampler.Sample(uLight);
+    pstd::optional<SampledLight> sampled = scene.lightSampler.Sample(ctx, uLight);
     if (!sampled)
         return {};
     const Light &light = scene.lights[sampled->lightIndex];

@@ -1,6 +1,7 @@
 #include "pbrt_ext/lightsamplers.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <vector>
 
 namespace pbrt {
@@ -60,6 +61,172 @@ Float PowerLightSampler::PMF(int lightIndex) const {
 
 std::string PowerLightSampler::ToString() const {
     return "[ PowerLightSampler lightCount: " + std::to_string(distribution.size()) + " ]";
+}
+
+namespace {
+
+// The surface-area-orientation heuristic's cost of a node (pbrt-v4): power times the solid angle
+// its emission can cover (M_Omega) times its surface area, stretched by how thin the parent box
+// is along the split axis, so that splits across the long axis are preferred.
+Float SplitCost(const LightBounds &b, const Bounds3f &parent, int dim) {
+    Float thetaO = SafeACos(b.cosTheta_o), thetaE = SafeACos(b.cosTheta_e);
+    Float thetaW = std::min(thetaO + thetaE, Pi);
+    Float sinThetaO = SafeSqrt(1 - Sqr(b.cosTheta_o));
+    Float mOmega = 2 * Pi * (1 - b.cosTheta_o) +
+                   Pi / 2 * (2 * thetaW * sinThetaO - std::cos(thetaO - 2 * thetaW) -
+                             2 * thetaO * sinThetaO + b.cosTheta_o);
+    Vector3f d = parent.Diagonal();
+    Float kr = std::max({d.x, d.y, d.z}) / d[dim];
+    return b.phi * mOmega * kr * b.bounds.SurfaceArea();
+}
+
+}  // namespace
+
+BVHLightSampler::BVHLightSampler(pstd::span<const Light> lights) {
+    std::vector<BoundedLight> bounded;
+    for (size_t i = 0; i < lights.size(); ++i) {
+        pstd::optional<LightBounds> b = lights[i].Bounds();
+        if (!b)
+            infiniteLights.push_back(int(i));
+        else if (b->phi > 0) {
+            bounded.push_back({int(i), *b});
+            allBounds = Union(allBounds, b->bounds);
+        }
+    }
+    if (!bounded.empty())
+        Build(bounded, 0, bounded.size(), 0, 0);
+}
+
+LightBounds BVHLightSampler::Build(std::vector<BoundedLight> &lights, size_t begin, size_t end,
+                                   uint64_t bitTrail, int depth) {
+    if (end - begin == 1) {
+        nodes.push_back({lights[begin].bounds, lights[begin].lightIndex, true});
+        lightToBitTrail[lights[begin].lightIndex] = bitTrail;
+        return lights[begin].bounds;
+    }
+    Bounds3f bounds, centroidBounds;
+    for (size_t i = begin; i < end; ++i) {
+        bounds = Union(bounds, lights[i].bounds.bounds);
+        centroidBounds = Union(centroidBounds, lights[i].bounds.Centroid());
+    }
+
+    // The cheapest split between 12 buckets of centroids along each axis.
+    constexpr int nBuckets = 12;
+    Float minCost = Infinity;
+    int minDim = -1, minBucket = -1;
+    auto bucketOf = [&](const BoundedLight &l, int dim) {
+        Float t = (l.bounds.Centroid()[dim] - centroidBounds.pMin[dim]) /
+                  (centroidBounds.pMax[dim] - centroidBounds.pMin[dim]);
+        return std::clamp(int(t * nBuckets), 0, nBuckets - 1);
+    };
+    for (int dim = 0; dim < 3; ++dim) {
+        if (!(centroidBounds.pMax[dim] > centroidBounds.pMin[dim]))
+            continue;
+        LightBounds buckets[nBuckets];
+        for (size_t i = begin; i < end; ++i) {
+            int b = bucketOf(lights[i], dim);
+            buckets[b] = Union(buckets[b], lights[i].bounds);
+        }
+        for (int split = 0; split < nBuckets - 1; ++split) {
+            LightBounds below, above;
+            for (int b = 0; b <= split; ++b)
+                below = Union(below, buckets[b]);
+            for (int b = split + 1; b < nBuckets; ++b)
+                above = Union(above, buckets[b]);
+            Float cost = SplitCost(below, bounds, dim) + SplitCost(above, bounds, dim);
+            if (cost > 0 && cost < minCost) {
+                minCost = cost;
+                minDim = dim;
+                minBucket = split;
+            }
+        }
+    }
+    size_t mid = (begin + end) / 2;
+    if (minDim >= 0) {
+        auto it = std::partition(lights.begin() + begin, lights.begin() + end,
+                                 [&](const BoundedLight &l) { return bucketOf(l, minDim) <= minBucket; });
+        mid = size_t(it - lights.begin());
+    }
+    if (mid == begin || mid == end)
+        mid = (begin + end) / 2;
+
+    // Children in depth-first order: the first follows its parent, the second's index is stored.
+    size_t nodeIndex = nodes.size();
+    nodes.push_back({LightBounds(), 0, false});
+    if (depth >= 64)
+        throw std::runtime_error("BVHLightSampler: the light tree is deeper than 64 levels");
+    LightBounds first = Build(lights, begin, mid, bitTrail, depth + 1);
+    nodes[nodeIndex].childOrLightIndex = int(nodes.size());
+    LightBounds second = Build(lights, mid, end, bitTrail | (uint64_t(1) << depth), depth + 1);
+    nodes[nodeIndex].bounds = Union(first, second);
+    return nodes[nodeIndex].bounds;
+}
+
+Float BVHLightSampler::PInfinite() const {
+    Float nInfinite = Float(infiniteLights.size());
+    return nInfinite / (nInfinite + (nodes.empty() ? 0 : 1));
+}
+
+pstd::optional<SampledLight> BVHLightSampler::Sample(const LightSampleContext &ctx,
+                                                     Float u) const {
+    Float pInfinite = PInfinite();
+    if (u < pInfinite) {
+        int n = int(infiniteLights.size());
+        int index = std::min(int(u / pInfinite * n), n - 1);
+        return SampledLight{infiniteLights[index], pInfinite / n};
+    }
+    if (nodes.empty())
+        return {};
+    u = std::min((u - pInfinite) / (1 - pInfinite), OneMinusEpsilon);
+    int nodeIndex = 0;
+    Float pmf = 1 - pInfinite;
+    while (!nodes[nodeIndex].isLeaf) {
+        int children[2] = {nodeIndex + 1, nodes[nodeIndex].childOrLightIndex};
+        Float ci[2] = {nodes[children[0]].bounds.Importance(ctx.p, ctx.n),
+                       nodes[children[1]].bounds.Importance(ctx.p, ctx.n)};
+        if (ci[0] == 0 && ci[1] == 0)
+            return {};
+        Float p0 = ci[0] / (ci[0] + ci[1]);
+        int child = u < p0 ? 0 : 1;
+        pmf *= ci[child] / (ci[0] + ci[1]);  // as PMF computes it, to the last bit
+        u = std::min(child == 0 ? u / p0 : (u - p0) / (1 - p0), OneMinusEpsilon);
+        nodeIndex = children[child];
+    }
+    // A lone light at the root is chosen only where it can contribute, as inner nodes are.
+    if (nodeIndex == 0 && nodes[0].bounds.Importance(ctx.p, ctx.n) == 0)
+        return {};
+    return SampledLight{nodes[nodeIndex].childOrLightIndex, pmf};
+}
+
+Float BVHLightSampler::PMF(const LightSampleContext &ctx, int lightIndex) const {
+    auto trail = lightToBitTrail.find(lightIndex);
+    if (trail == lightToBitTrail.end()) {
+        bool infinite = std::find(infiniteLights.begin(), infiniteLights.end(), lightIndex) !=
+                        infiniteLights.end();
+        return infinite ? PInfinite() / Float(infiniteLights.size()) : 0;
+    }
+    uint64_t bitTrail = trail->second;
+    int nodeIndex = 0;
+    Float pmf = 1 - PInfinite();
+    while (!nodes[nodeIndex].isLeaf) {
+        int children[2] = {nodeIndex + 1, nodes[nodeIndex].childOrLightIndex};
+        Float ci[2] = {nodes[children[0]].bounds.Importance(ctx.p, ctx.n),
+                       nodes[children[1]].bounds.Importance(ctx.p, ctx.n)};
+        int child = int(bitTrail & 1);
+        if (ci[child] == 0)
+            return 0;
+        pmf *= ci[child] / (ci[0] + ci[1]);
+        nodeIndex = children[child];
+        bitTrail >>= 1;
+    }
+    if (nodeIndex == 0 && nodes[0].bounds.Importance(ctx.p, ctx.n) == 0)
+        return 0;
+    return pmf;
+}
+
+std::string BVHLightSampler::ToString() const {
+    return "[ BVHLightSampler nodes: " + std::to_string(nodes.size()) +
+           " infiniteLights: " + std::to_string(infiniteLights.size()) + " ]";
 }
 
 }  // namespace pbrt

@@ -1,16 +1,21 @@
-// Light samplers: which light next-event estimation asks (pbrt-v4's src/pbrt/lightsamplers.h,
-// reduced to the uniform and power samplers). Lights are named by their index in the scene's
-// light list; Sample returns the index and the discrete probability p of choosing it, and
-// PMF(i) is that same probability, so an estimate divides by p and MIS weights use PMF.
+// Light samplers: which light next-event estimation asks (pbrt-v4's src/pbrt/lightsamplers.h:
+// uniform, power and BVH). Lights are named by their index in the scene's light list; Sample
+// returns the index and the discrete probability p of choosing it, and PMF(i) is that same
+// probability, so an estimate divides by p and MIS weights use PMF. The BVH sampler's
+// probabilities depend on the receiving point; the others ignore it.
 #pragma once
 
 #include "pbrt_ext/interaction.h"
+#include "pbrt_ext/lightbounds.h"
 #include "pbrt_ext/lights.h"
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/util/pstd.h"
 #include "pbrt_ext/util/sampling.h"
 
+#include <cstdint>
 #include <string>
+#include <unordered_map>
+#include <vector>
 
 namespace pbrt {
 
@@ -55,6 +60,45 @@ class PowerLightSampler {
   private:
     // Over [0, 1] with one piece per light: piece i has probability power_i / total.
     PiecewiseConstant1D distribution;
+};
+
+// pbrt-v4's BVH light sampler (Conty Estevez and Kulla 2018, as pbrt-v4 builds it): the lights
+// with bounds sit in a binary tree of LightBounds; sampling descends from the root, choosing each
+// child with probability proportional to its importance at the receiving point, so that near,
+// bright, facing lights are chosen more. Lights without bounds (distant, infinite) are chosen
+// first, uniformly, with probability nInfinite / (nInfinite + 1 if the tree is not empty);
+// lights with no power are never chosen.
+class BVHLightSampler {
+  public:
+    explicit BVHLightSampler(pstd::span<const Light> lights);
+
+    pstd::optional<SampledLight> Sample(const LightSampleContext &ctx, Float u) const;
+    Float PMF(const LightSampleContext &ctx, int lightIndex) const;
+    std::string ToString() const;
+
+  private:
+    struct Node {
+        LightBounds bounds;
+        // A leaf's light index; an interior node's second child (its first is the next node).
+        int childOrLightIndex;
+        bool isLeaf;
+    };
+    struct BoundedLight {
+        int lightIndex;
+        LightBounds bounds;
+    };
+
+    // Builds the subtree of lights [begin, end) at depth, whose path from the root is bitTrail
+    // (bit d: the second child at depth d); returns its bounds.
+    LightBounds Build(std::vector<BoundedLight> &lights, size_t begin, size_t end,
+                      uint64_t bitTrail, int depth);
+    // The probability of choosing one of the lights without bounds.
+    Float PInfinite() const;
+
+    std::vector<int> infiniteLights;
+    std::vector<Node> nodes;
+    std::unordered_map<int, uint64_t> lightToBitTrail;  // lights in the tree
+    Bounds3f allBounds;
 };
 
 }  // namespace pbrt

@@ -21,6 +21,7 @@ struct RenderOverrides {
     std::optional<Bounds2i> pixelBounds;     // instead of the film's (wins over cropWindow)
     std::optional<PathStrategy> strategy;    // instead of the integrator's "mis"
     std::optional<FabricSampling> fabricSampler;  // for every fabric material
+    std::optional<std::string> lightSampler;  // "bvh", "power" or "uniform", instead of the integrator's
     double timeLimitSeconds = 0;             // 0: none
 };
 

@@ -124,9 +124,9 @@ void SceneBuilder::AddObjectInstance(const std::string &name, const Transform &w
 void SceneBuilder::AddLight(Light light) { scene->lights.push_back(std::move(light)); }
 
 void SceneBuilder::SetLightSampler(std::string name) {
-    if (name != "power" && name != "uniform")
+    if (name != "bvh" && name != "power" && name != "uniform")
         throw std::invalid_argument("unknown light sampler \"" + name +
-                                    "\": expected power or uniform");
+                                    "\": expected bvh, power or uniform");
     lightSamplerName = std::move(name);
 }
 
@@ -143,8 +143,10 @@ std::unique_ptr<Scene> SceneBuilder::Build() {
     // without the power sampler's table search.
     if (lightSamplerName == "uniform" || scene->lights.size() <= 1)
         scene->lightSampler = UniformLightSampler(scene->lights);
-    else
+    else if (lightSamplerName == "power")
         scene->lightSampler = PowerLightSampler(scene->lights);
+    else
+        scene->lightSampler = BVHLightSampler(scene->lights);
     scene->integratorOptions = integratorOptions;
     return std::move(scene);
 }

@@ -24,18 +24,19 @@
 
 namespace pbrt {
 
-// The light sampler a scene uses: pbrt-v4's "power" (default) or "uniform".
+// The light sampler a scene uses: pbrt-v4's "bvh" (default), "power" or "uniform". Probabilities
+// are those at the receiving point ctx (only the BVH sampler's depend on it).
 class LightSampler {
   public:
-    using Variant = std::variant<PowerLightSampler, UniformLightSampler>;
+    using Variant = std::variant<BVHLightSampler, PowerLightSampler, UniformLightSampler>;
     template <typename T>
     LightSampler(T sampler) : sampler(std::move(sampler)) {}
 
-    pstd::optional<SampledLight> Sample(Float u) const {
-        return std::visit([&](const auto &s) { return s.Sample(u); }, sampler);
+    pstd::optional<SampledLight> Sample(const LightSampleContext &ctx, Float u) const {
+        return std::visit([&](const auto &s) { return s.Sample(ctx, u); }, sampler);
     }
-    Float PMF(int lightIndex) const {
-        return std::visit([&](const auto &s) { return s.PMF(lightIndex); }, sampler);
+    Float PMF(const LightSampleContext &ctx, int lightIndex) const {
+        return std::visit([&](const auto &s) { return s.PMF(ctx, lightIndex); }, sampler);
     }
 
   private:
@@ -117,7 +118,7 @@ class SceneBuilder {
     void AddLight(Light light);
 
     void SetIntegrator(PathIntegratorOptions options) { integratorOptions = options; }
-    void SetLightSampler(std::string name);  // "power" (default) or "uniform"
+    void SetLightSampler(std::string name);  // "bvh" (default), "power" or "uniform"
 
     // The scene, ready to render. The builder is left empty.
     std::unique_ptr<Scene> Build();
@@ -135,7 +136,7 @@ class SceneBuilder {
     std::map<std::string, int> objects;  // name -> the aggregate's object id
     std::string currentObject;           // empty outside ObjectBegin/End
     PathIntegratorOptions integratorOptions;
-    std::string lightSamplerName = "power";
+    std::string lightSamplerName = "bvh";
 };
 
 }  // namespace pbrt

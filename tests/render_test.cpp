@@ -326,7 +326,7 @@ TEST(SceneBuilderErrors, ObjectMisuseIsReportedByName) {
     EXPECT_THROW(builder.BeginObject("b"), std::invalid_argument);
     builder.EndObject();
     EXPECT_THROW(builder.BeginObject("a"), std::invalid_argument);
-    EXPECT_THROW(builder.SetLightSampler("bvh"), std::invalid_argument);
+    EXPECT_THROW(builder.SetLightSampler("kdtree"), std::invalid_argument);
 }
 
 TEST(RenderTimeLimit, StopsBetweenPassesWithEveryPixelAtTheSameSampleCount) {

@@ -56,6 +56,10 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
     app.add_option("--fabric-sampler", fabricSampler,
                    "uniform, cosine, paper, truncatedsinphi or best: the sampler of every fabric "
                    "material (default: each material's, best unless it says)");
+    app.add_option("--light-sampler", o.lightSampler,
+                   "bvh, power or uniform: how next-event estimation picks a light (default: "
+                   "the integrator's \"lightsampler\", bvh unless it says)")
+        ->check(CLI::IsMember({"bvh", "power", "uniform"}));
     app.add_option("--time-limit", o.timeLimitSeconds,
                    "stop after this many seconds with every pixel at the same sample count "
                    "(default: 0, no limit)");
