@@ -88,10 +88,8 @@ BVHLightSampler::BVHLightSampler(pstd::span<const Light> lights) {
         pstd::optional<LightBounds> b = lights[i].Bounds();
         if (!b)
             infiniteLights.push_back(int(i));
-        else if (b->phi > 0) {
+        else if (b->phi > 0)
             bounded.push_back({int(i), *b});
-            allBounds = Union(allBounds, b->bounds);
-        }
     }
     if (!bounded.empty())
         Build(bounded, 0, bounded.size(), 0, 0);

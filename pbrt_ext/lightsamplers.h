@@ -67,7 +67,9 @@ class PowerLightSampler {
 // child with probability proportional to its importance at the receiving point, so that near,
 // bright, facing lights are chosen more. Lights without bounds (distant, infinite) are chosen
 // first, uniformly, with probability nInfinite / (nInfinite + 1 if the tree is not empty);
-// lights with no power are never chosen.
+// lights with no power are never chosen. Where a descent meets two children of importance 0 (no
+// light below them can reach the point, though their parent's looser bounds allowed it) nothing
+// is chosen, so the PMF sums to less than 1 there, as in pbrt-v4.
 class BVHLightSampler {
   public:
     explicit BVHLightSampler(pstd::span<const Light> lights);
@@ -98,7 +100,6 @@ class BVHLightSampler {
     std::vector<int> infiniteLights;
     std::vector<Node> nodes;
     std::unordered_map<int, uint64_t> lightToBitTrail;  // lights in the tree
-    Bounds3f allBounds;
 };
 
 }  // namespace pbrt
