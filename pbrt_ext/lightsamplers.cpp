@@ -160,6 +160,14 @@ LightBounds BVHLightSampler::Build(std::vector<BoundedLight> &lights, size_t beg
     return nodes[nodeIndex].bounds;
 }
 
+BVHLightSampler::Children BVHLightSampler::ChildrenAt(int nodeIndex,
+                                                      const LightSampleContext &ctx) const {
+    Children c{{nodeIndex + 1, nodes[nodeIndex].childOrLightIndex}, {}};
+    for (int i = 0; i < 2; ++i)
+        c.importance[i] = nodes[c.index[i]].bounds.Importance(ctx.p, ctx.n);
+    return c;
+}
+
 Float BVHLightSampler::PInfinite() const {
     Float nInfinite = Float(infiniteLights.size());
     return nInfinite / (nInfinite + (nodes.empty() ? 0 : 1));
@@ -179,19 +187,17 @@ pstd::optional<SampledLight> BVHLightSampler::Sample(const LightSampleContext &c
     int nodeIndex = 0;
     Float pmf = 1 - pInfinite;
     while (!nodes[nodeIndex].isLeaf) {
-        int children[2] = {nodeIndex + 1, nodes[nodeIndex].childOrLightIndex};
-        Float ci[2] = {nodes[children[0]].bounds.Importance(ctx.p, ctx.n),
-                       nodes[children[1]].bounds.Importance(ctx.p, ctx.n)};
-        if (ci[0] == 0 && ci[1] == 0)
+        Children c = ChildrenAt(nodeIndex, ctx);
+        Float total = c.importance[0] + c.importance[1];
+        if (total == 0)
             return {};
-        Float p0 = ci[0] / (ci[0] + ci[1]);
+        Float p0 = c.importance[0] / total;
         int child = u < p0 ? 0 : 1;
-        pmf *= ci[child] / (ci[0] + ci[1]);  // as PMF computes it, to the last bit
+        pmf *= c.importance[child] / total;  // as PMF computes it, to the last bit
         u = std::min(child == 0 ? u / p0 : (u - p0) / (1 - p0), OneMinusEpsilon);
-        nodeIndex = children[child];
+        nodeIndex = c.index[child];
     }
-    // A lone light at the root is chosen only where it can contribute, as inner nodes are.
-    if (nodeIndex == 0 && nodes[0].bounds.Importance(ctx.p, ctx.n) == 0)
+    if (LoneLeafUnreachable(nodeIndex, ctx))
         return {};
     return SampledLight{nodes[nodeIndex].childOrLightIndex, pmf};
 }
@@ -207,19 +213,15 @@ Float BVHLightSampler::PMF(const LightSampleContext &ctx, int lightIndex) const 
     int nodeIndex = 0;
     Float pmf = 1 - PInfinite();
     while (!nodes[nodeIndex].isLeaf) {
-        int children[2] = {nodeIndex + 1, nodes[nodeIndex].childOrLightIndex};
-        Float ci[2] = {nodes[children[0]].bounds.Importance(ctx.p, ctx.n),
-                       nodes[children[1]].bounds.Importance(ctx.p, ctx.n)};
+        Children c = ChildrenAt(nodeIndex, ctx);
         int child = int(bitTrail & 1);
-        if (ci[child] == 0)
+        if (c.importance[child] == 0)
             return 0;
-        pmf *= ci[child] / (ci[0] + ci[1]);
-        nodeIndex = children[child];
+        pmf *= c.importance[child] / (c.importance[0] + c.importance[1]);
+        nodeIndex = c.index[child];
         bitTrail >>= 1;
     }
-    if (nodeIndex == 0 && nodes[0].bounds.Importance(ctx.p, ctx.n) == 0)
-        return 0;
-    return pmf;
+    return LoneLeafUnreachable(nodeIndex, ctx) ? 0 : pmf;
 }
 
 std::string BVHLightSampler::ToString() const {

@@ -96,6 +96,18 @@ class BVHLightSampler {
                       uint64_t bitTrail, int depth);
     // The probability of choosing one of the lights without bounds.
     Float PInfinite() const;
+    // An interior node's two children (the next node, then the stored one) and their
+    // importance at the receiving point: Sample and PMF descend by the same numbers.
+    struct Children {
+        int index[2];
+        Float importance[2];
+    };
+    Children ChildrenAt(int nodeIndex, const LightSampleContext &ctx) const;
+    // Whether the tree is one leaf that cannot reach the receiving point (interior nodes exclude
+    // such lights through their children's importance).
+    bool LoneLeafUnreachable(int nodeIndex, const LightSampleContext &ctx) const {
+        return nodeIndex == 0 && nodes[0].bounds.Importance(ctx.p, ctx.n) == 0;
+    }
 
     std::vector<int> infiniteLights;
     std::vector<Node> nodes;
