@@ -197,10 +197,13 @@ namespace {
 DirectionCone NormalBounds(const Shape &shape) {
     if (shape.CastOrNullptr<Sphere>())
         return DirectionCone::EntireSphere();
-    std::vector<Point2f> at = {Point2f(0.5f, 0.5f)};
+    static constexpr Point2f center[] = {Point2f(0.5f, 0.5f)};
+    static constexpr Point2f corners[] = {Point2f(0, 0), Point2f(OneMinusEpsilon, 0),
+                                          Point2f(0, OneMinusEpsilon),
+                                          Point2f(OneMinusEpsilon, OneMinusEpsilon)};
+    pstd::span<const Point2f> at = center;
     if (shape.CastOrNullptr<BilinearPatch>())
-        at = {Point2f(0, 0), Point2f(OneMinusEpsilon, 0), Point2f(0, OneMinusEpsilon),
-              Point2f(OneMinusEpsilon, OneMinusEpsilon)};
+        at = corners;
     DirectionCone cone;
     for (Point2f u : at) {
         pstd::optional<ShapeSample> ss = shape.Sample(u);
