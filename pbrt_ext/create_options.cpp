@@ -2,6 +2,7 @@
 // defaults; unsupported types map to the nearest supported one with a warning).
 #include "pbrt_ext/create.h"
 
+#include "pbrt_ext/lightsamplers.h"
 #include "pbrt_ext/util/colorspace.h"
 #include "pbrt_ext/util/error.h"
 #include "pbrt_ext/util/resourcelimits.h"
@@ -308,10 +309,8 @@ PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrid
     options.regularize = p.GetOneBool("regularize", false);
     options.strategy = overrides.strategy.value_or(PathStrategy::MIS);
     std::string sampler = p.GetOneString("lightsampler", "bvh");
-    if (sampler != "bvh" && sampler != "power" && sampler != "uniform") {
-        throw ParseError(*p.Loc("lightsampler"), "unknown light sampler \"" + sampler +
-                                                     "\": expected bvh, power or uniform");
-    }
+    if (std::optional<std::string> error = LightSamplerNameError(sampler))
+        throw ParseError(*p.Loc("lightsampler"), *error);
     *lightSampler = overrides.lightSampler.value_or(sampler);
     if (supported)
         p.ReportUnused();

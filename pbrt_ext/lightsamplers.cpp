@@ -6,6 +6,12 @@
 
 namespace pbrt {
 
+std::optional<std::string> LightSamplerNameError(const std::string &name) {
+    if (name == "bvh" || name == "power" || name == "uniform")
+        return std::nullopt;
+    return "unknown light sampler \"" + name + "\": expected bvh, power or uniform";
+}
+
 pstd::optional<SampledLight> UniformLightSampler::Sample(Float u) const {
     if (lightCount == 0)
         return {};

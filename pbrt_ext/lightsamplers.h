@@ -13,11 +13,16 @@
 #include "pbrt_ext/util/sampling.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 namespace pbrt {
+
+// The samplers' names (the integrator's "lightsampler", --light-sampler): none for a known name,
+// else the message every reader of a name reports.
+std::optional<std::string> LightSamplerNameError(const std::string &name);
 
 struct SampledLight {
     int lightIndex;

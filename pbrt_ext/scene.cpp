@@ -124,9 +124,8 @@ void SceneBuilder::AddObjectInstance(const std::string &name, const Transform &w
 void SceneBuilder::AddLight(Light light) { scene->lights.push_back(std::move(light)); }
 
 void SceneBuilder::SetLightSampler(std::string name) {
-    if (name != "bvh" && name != "power" && name != "uniform")
-        throw std::invalid_argument("unknown light sampler \"" + name +
-                                    "\": expected bvh, power or uniform");
+    if (std::optional<std::string> error = LightSamplerNameError(name))
+        throw std::invalid_argument(*error);
     lightSamplerName = std::move(name);
 }
 

@@ -5,6 +5,7 @@
 // "file:line:col: error: ..." with a non-zero exit, and no image is written. Ctrl-C during the
 // render writes the image rendered so far and exits with status 130 (cmd/interrupt.h).
 #include "pbrt_ext/cmd/interrupt.h"
+#include "pbrt_ext/lightsamplers.h"
 #include "pbrt_ext/options.h"
 #include "pbrt_ext/render.h"
 #include "pbrt_ext/sceneloader.h"
@@ -59,7 +60,7 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
     app.add_option("--light-sampler", o.lightSampler,
                    "bvh, power or uniform: how next-event estimation picks a light (default: "
                    "the integrator's \"lightsampler\", bvh unless it says)")
-        ->check(CLI::IsMember({"bvh", "power", "uniform"}));
+        ->check([](const std::string &name) { return LightSamplerNameError(name).value_or(""); });
     app.add_option("--time-limit", o.timeLimitSeconds,
                    "stop after this many seconds with every pixel at the same sample count "
                    "(default: 0, no limit)");
