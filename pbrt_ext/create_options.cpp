@@ -131,6 +131,22 @@ auto WithPixelBoundsLoc(const SceneEntity &e, const RenderOverrides &overrides, 
     }
 }
 
+// The "randomization" of a low-discrepancy sampler, with pbrt-v4's defaults: permuted digits
+// for Halton, whose prime bases have no fast Owen scramble, fast Owen for the Sobol' samplers.
+RandomizeStrategy SamplerRandomization(const SceneEntity &e) {
+    const ParameterDictionary &p = e.parameters;
+    bool halton = e.name == "halton";
+    std::string sampler = e.name.empty() ? "zsobol" : e.name;
+    std::string name = p.GetOneString("randomization", halton ? "permutedigits" : "fastowen");
+    if (name == "none") return RandomizeStrategy::None;
+    if (name == "permutedigits") return RandomizeStrategy::PermuteDigits;
+    if (name == "owen") return RandomizeStrategy::Owen;
+    if (name == "fastowen" && !halton) return RandomizeStrategy::FastOwen;
+    throw ParseError(*p.Loc("randomization"),
+                     "unknown randomization \"" + name + "\" for the " + sampler +
+                         " sampler: expected none, permutedigits" + (halton ? "" : ", fastowen") + " or owen");
+}
+
 }  // namespace
 
 Filter CreateFilter(const SceneEntity &e) {
@@ -271,31 +287,25 @@ Sampler CreateSampler(const SceneEntity &e, Point2i fullResolution,
         return MakeSampler(e, overrides, {"xsamples", "ysamples"},
                            [&] { return StratifiedSampler(xs, ys, jitter, seed); });
     }
-    if (!e.name.empty() && e.name != "zsobol") {
-        if (e.name != "halton" && e.name != "sobol" && e.name != "paddedsobol" &&
-            e.name != "pmj02bn")
+    bool lowDiscrepancy = e.name.empty() || e.name == "zsobol" || e.name == "halton" ||
+                          e.name == "sobol" || e.name == "paddedsobol";
+    if (!lowDiscrepancy) {
+        if (e.name != "pmj02bn")
             throw ParseError(e.loc, "unknown Sampler \"" + e.name + "\": expected zsobol, "
                                     "halton, sobol, paddedsobol, pmj02bn, stratified or "
                                     "independent");
         Substitute(e, "Sampler", "\"zsobol\" (same sample count; a low-discrepancy sampler)");
     }
     int spp = overrides.spp.value_or(p.GetOneInt("pixelsamples", 16));
-    std::string randomization = p.GetOneString("randomization", "fastowen");
-    RandomizeStrategy randomize = RandomizeStrategy::FastOwen;
-    if (randomization == "none")
-        randomize = RandomizeStrategy::None;
-    else if (randomization == "permutedigits")
-        randomize = RandomizeStrategy::PermuteDigits;
-    else if (randomization == "owen")
-        randomize = RandomizeStrategy::Owen;
-    else if (randomization != "fastowen")
-        throw ParseError(*p.Loc("randomization"), "unknown randomization \"" + randomization +
-                                                      "\": expected none, permutedigits, "
-                                                      "fastowen or owen");
-    if (e.name == "zsobol" || e.name.empty())
+    RandomizeStrategy randomize = SamplerRandomization(e);
+    if (lowDiscrepancy)
         p.ReportUnused();
-    return MakeSampler(e, overrides, {"pixelsamples"},
-                       [&] { return ZSobolSampler(spp, fullResolution, randomize, seed); });
+    return MakeSampler(e, overrides, {"pixelsamples"}, [&]() -> Sampler {
+        if (e.name == "halton") return HaltonSampler(spp, fullResolution, randomize, seed);
+        if (e.name == "sobol") return SobolSampler(spp, fullResolution, randomize, seed);
+        if (e.name == "paddedsobol") return PaddedSobolSampler(spp, randomize, seed);
+        return ZSobolSampler(spp, fullResolution, randomize, seed);
+    });
 }
 
 PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrides &overrides,

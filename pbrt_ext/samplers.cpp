@@ -7,6 +7,8 @@
 #include <bit>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 namespace pbrt {
 
@@ -46,6 +48,128 @@ std::string StratifiedSampler::ToString() const {
     return "[ StratifiedSampler xPixelSamples: " + std::to_string(xPixelSamples) +
            " yPixelSamples: " + std::to_string(yPixelSamples) + " jitter: " + (jitter ? "true" : "false") +
            " seed: " + std::to_string(seed) + " ]";
+}
+
+namespace {
+// The extended Euclidean algorithm's x in a x + n y = gcd(a, n) = 1, taken mod n.
+int64_t MultiplicativeInverse(int64_t a, int64_t n) {
+    int64_t r0 = a, r1 = n, x0 = 1, x1 = 0;
+    while (r1 != 0) {
+        int64_t q = r0 / r1;
+        std::tie(r0, r1) = std::pair(r1, r0 - q * r1);
+        std::tie(x0, x1) = std::pair(x1, x0 - q * x1);
+    }
+    return Mod(x0, n);
+}
+
+void CheckCountAndResolution(const char *name, int samplesPerPixel, Point2i fullResolution) {
+    if (samplesPerPixel < 1 || fullResolution.x < 1 || fullResolution.y < 1)
+        throw std::runtime_error(fmt::format("{} sampler: samples per pixel and resolution must be "
+                                             "positive", name));
+}
+
+void WarnUnlessPowerOfTwo(const char *name, int samplesPerPixel) {
+    if (!std::has_single_bit(unsigned(samplesPerPixel)))
+        Warning("%s sampler: %d samples per pixel is not a power of two; its samples do not "
+                "form a net", name, samplesPerPixel);
+}
+}  // namespace
+
+HaltonSampler::HaltonSampler(int samplesPerPixel, Point2i fullResolution, RandomizeStrategy randomize,
+                             int seed)
+    : samplesPerPixel(samplesPerPixel), seed(seed), randomize(randomize) {
+    CheckCountAndResolution("halton", samplesPerPixel, fullResolution);
+    if (randomize == RandomizeStrategy::FastOwen)
+        throw std::runtime_error("halton sampler: fastowen is a base-2 scramble; expected none, "
+                                 "permutedigits or owen");
+    if (randomize == RandomizeStrategy::PermuteDigits)
+        permutations = std::make_shared<const HaltonDigitPermutations>(uint32_t(seed));
+    for (int i = 0; i < 2; ++i) {
+        int base = i == 0 ? 2 : 3, scale = 1, exponent = 0;
+        while (scale < std::min(fullResolution[i], kMaxHaltonResolution)) {
+            scale *= base;
+            ++exponent;
+        }
+        baseScales[i] = scale;
+        baseExponents[i] = exponent;
+    }
+    sampleStride = baseScales[0] * baseScales[1];
+    multInverse[0] = MultiplicativeInverse(baseScales[1], baseScales[0]);
+    multInverse[1] = MultiplicativeInverse(baseScales[0], baseScales[1]);
+}
+
+// The index below the stride whose dimension 0 has the pixel's x digits (base 2) and whose
+// dimension 1 has its y digits (base 3): the Chinese remainder theorem's combination of the
+// two residues.
+int64_t HaltonSampler::FirstIndexInPixel(Point2i p) const {
+    if (sampleStride == 1) return 0;
+    int64_t index = 0;
+    for (int i = 0; i < 2; ++i) {
+        uint64_t residue = InverseRadicalInverse(uint64_t(Mod(p[i], kMaxHaltonResolution)), i == 0 ? 2 : 3,
+                                                 baseExponents[i]);
+        index += int64_t(residue) * (sampleStride / baseScales[i]) * multInverse[i];
+    }
+    return index % sampleStride;
+}
+
+std::string HaltonSampler::ToString() const {
+    return fmt::format("[ HaltonSampler samplesPerPixel: {} randomize: {} seed: {} baseScales: {} x {} ]",
+                       samplesPerPixel, RandomizeName(randomize), seed, baseScales.x, baseScales.y);
+}
+
+SobolSampler::SobolSampler(int samplesPerPixel, Point2i fullResolution, RandomizeStrategy randomize, int seed)
+    : samplesPerPixel(samplesPerPixel), seed(seed), randomize(randomize) {
+    CheckCountAndResolution("sobol", samplesPerPixel, fullResolution);
+    WarnUnlessPowerOfTwo("sobol", samplesPerPixel);
+    log2Scale = std::countr_zero(std::bit_ceil(unsigned(std::max(fullResolution.x, fullResolution.y))));
+    int bits = 2 * log2Scale + std::bit_width(unsigned(samplesPerPixel - 1));
+    if (bits > kSobolMatrixColumns)
+        throw std::runtime_error(fmt::format(
+            "sobol sampler: {} samples per pixel at resolution {} x {} need {}-bit indices; "
+            "expected at most {}", samplesPerPixel, fullResolution.x, fullResolution.y, bits,
+            kSobolMatrixColumns));
+    // Column j of the system: dimension 1's top m bits from index bit m + j. Gauss-Jordan
+    // elimination on [A | I] leaves A's inverse; A is invertible because every block of
+    // 2^(2m) points is a (0, 2m, 2)-net, one point per pixel.
+    int m = log2Scale;
+    uint32_t rows[32] = {}, inverse[32] = {};
+    for (int r = 0; r < m; ++r) {
+        for (int j = 0; j < m; ++j)
+            if ((SobolBits(1ull << (m + j), 1) >> (32 - m) >> r) & 1) rows[r] |= 1u << j;
+        inverse[r] = 1u << r;
+    }
+    for (int col = 0; col < m; ++col) {
+        int pivot = col;
+        while (!((rows[pivot] >> col) & 1)) ++pivot;
+        std::swap(rows[col], rows[pivot]);
+        std::swap(inverse[col], inverse[pivot]);
+        for (int r = 0; r < m; ++r)
+            if (r != col && ((rows[r] >> col) & 1)) {
+                rows[r] ^= rows[col];
+                inverse[r] ^= inverse[col];
+            }
+    }
+    // inverse[r] is row r of A^-1: bit c says whether rhs bit c enters unknown r. Transpose
+    // it into the columns IndexOfPixelSample XORs.
+    for (int r = 0; r < m; ++r)
+        for (int c = 0; c < m; ++c)
+            if ((inverse[r] >> c) & 1) yInverse[c] |= 1u << r;
+}
+
+std::string SobolSampler::ToString() const {
+    return fmt::format("[ SobolSampler samplesPerPixel: {} randomize: {} seed: {} scale: {} ]",
+                       samplesPerPixel, RandomizeName(randomize), seed, 1 << log2Scale);
+}
+
+PaddedSobolSampler::PaddedSobolSampler(int samplesPerPixel, RandomizeStrategy randomize, int seed)
+    : samplesPerPixel(samplesPerPixel), seed(seed), randomize(randomize) {
+    CheckCountAndResolution("paddedsobol", samplesPerPixel, Point2i(1, 1));
+    WarnUnlessPowerOfTwo("paddedsobol", samplesPerPixel);
+}
+
+std::string PaddedSobolSampler::ToString() const {
+    return fmt::format("[ PaddedSobolSampler samplesPerPixel: {} randomize: {} seed: {} ]", samplesPerPixel,
+                       RandomizeName(randomize), seed);
 }
 
 ZSobolSampler::ZSobolSampler(int samplesPerPixel, Point2i fullResolution, RandomizeStrategy randomize,

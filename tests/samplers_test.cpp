@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <set>
 #include <vector>
 
@@ -21,7 +22,15 @@ std::vector<Sampler> AllSamplers(int seed) {
             ZSobolSampler(16, kResolution, RandomizeStrategy::FastOwen, seed),
             ZSobolSampler(8, kResolution, RandomizeStrategy::Owen, seed),
             ZSobolSampler(4, kResolution, RandomizeStrategy::None, seed),
-            ZSobolSampler(32, kResolution, RandomizeStrategy::PermuteDigits, seed)};
+            ZSobolSampler(32, kResolution, RandomizeStrategy::PermuteDigits, seed),
+            HaltonSampler(16, kResolution, RandomizeStrategy::PermuteDigits, seed),
+            HaltonSampler(9, kResolution, RandomizeStrategy::Owen, seed),
+            HaltonSampler(4, kResolution, RandomizeStrategy::None, seed),
+            SobolSampler(16, kResolution, RandomizeStrategy::FastOwen, seed),
+            SobolSampler(8, kResolution, RandomizeStrategy::Owen, seed),
+            SobolSampler(4, kResolution, RandomizeStrategy::PermuteDigits, seed),
+            PaddedSobolSampler(16, RandomizeStrategy::FastOwen, seed),
+            PaddedSobolSampler(8, RandomizeStrategy::None, seed)};
 }
 
 // The values a path would consume: 1D, 2D, pixel 2D, interleaved.
@@ -81,9 +90,10 @@ TEST(Samplers, SeedPixelAndIndexChangeTheValues) {
 }
 
 // In every dimension, the pixel's samples hit each of the spp 1D strata exactly once.
-TEST(Samplers, StratifiedAndZSobolStratify1D) {
+TEST(Samplers, StratifiedAndSobolsStratify1D) {
     std::vector<Sampler> samplers = {StratifiedSampler(4, 2, true, 3), StratifiedSampler(5, 1, false, 3),
-                                     ZSobolSampler(16, kResolution), ZSobolSampler(8, kResolution)};
+                                     ZSobolSampler(16, kResolution), ZSobolSampler(8, kResolution),
+                                     PaddedSobolSampler(16), PaddedSobolSampler(8, RandomizeStrategy::Owen)};
     for (Sampler &s : samplers) {
         int spp = s.SamplesPerPixel();
         for (Point2i p : {Point2i(0, 0), Point2i(13, 7), Point2i(36, 22)})
@@ -111,30 +121,129 @@ TEST(Samplers, StratifiedCoversTheGridAndCentersWithoutJitter) {
     EXPECT_EQ(cells.size(), 15u);
 }
 
-// Scrambled Sobol' points of one pixel form a (0, m, 2)-net: every elementary interval
-// (2^-a by 2^-(m-a)) holds exactly one of the 2^m samples, for every pair of dimensions.
-TEST(Samplers, ZSobolPixelSamplesFormNets) {
-    for (RandomizeStrategy r : {RandomizeStrategy::None, RandomizeStrategy::PermuteDigits,
-                                RandomizeStrategy::FastOwen, RandomizeStrategy::Owen})
+// Whether 2^m points form a (0, m, 2)-net: every elementary interval (2^-a by 2^-(m-a)) holds
+// exactly one of them.
+testing::AssertionResult IsNet(const std::vector<Point2f> &pts) {
+    int m = std::countr_zero(unsigned(pts.size()));
+    if ((size_t(1) << m) != pts.size()) return testing::AssertionFailure() << pts.size() << " points";
+    for (int a = 0; a <= m; ++a) {
+        int nx = 1 << a, ny = 1 << (m - a);
+        std::vector<int> count(size_t(nx * ny), 0);
+        for (Point2f u : pts) ++count[size_t(int(u.y * ny) * nx + int(u.x * nx))];
+        for (int c : count)
+            if (c != 1) return testing::AssertionFailure() << "interval " << nx << "x" << ny << " holds " << c;
+    }
+    return testing::AssertionSuccess();
+}
+
+// The points the pixel's samples give in one dimension pair (or the pixel offsets at dim -1).
+std::vector<Point2f> PixelPoints(Sampler s, Point2i p, int dim, int n) {
+    std::vector<Point2f> pts;
+    for (int i = 0; i < n; ++i) {
+        s.StartPixelSample(p, i, std::max(dim, 0));
+        pts.push_back(dim < 0 ? s.GetPixel2D() : s.Get2D());
+    }
+    return pts;
+}
+
+const RandomizeStrategy kAllRandomizations[] = {RandomizeStrategy::None, RandomizeStrategy::PermuteDigits,
+                                                RandomizeStrategy::FastOwen, RandomizeStrategy::Owen};
+
+// Scrambled Sobol' points of one pixel form a (0, m, 2)-net in every pair of dimensions: the
+// zsobol and padded Sobol' samplers by construction, the global Sobol' sampler's pixel
+// offsets because the pixel is an elementary interval of a (0, 2)-sequence.
+TEST(Samplers, SobolPixelSamplesFormNets) {
+    for (RandomizeStrategy r : kAllRandomizations)
         for (int log2spp : {0, 1, 2, 3, 4, 5, 6}) {
-            ZSobolSampler s(1 << log2spp, kResolution, r, 5);
-            for (Point2i p : {Point2i(0, 0), Point2i(9, 17), Point2i(36, 0)})
-                for (int dim : {0, 2, 5}) {
-                    std::vector<Point2f> pts;
-                    for (int i = 0; i < s.SamplesPerPixel(); ++i) {
-                        s.StartPixelSample(p, i, dim);
-                        pts.push_back(s.Get2D());
+            int spp = 1 << log2spp;
+            for (Sampler s : {Sampler(ZSobolSampler(spp, kResolution, r, 5)), Sampler(PaddedSobolSampler(spp, r, 5)),
+                              Sampler(SobolSampler(spp, kResolution, r, 5))})
+                for (Point2i p : {Point2i(0, 0), Point2i(9, 17), Point2i(36, 0)})
+                    for (int dim : {-1, 0, 2, 5}) {
+                        // The global sampler's other dimensions are nets over the whole image's
+                        // block, not within a pixel: the next test.
+                        if (dim >= 0 && s.Name() == std::string("sobol")) continue;
+                        ASSERT_TRUE(IsNet(PixelPoints(s, p, dim, spp)))
+                            << s.ToString() << " pixel " << p.x << "," << p.y << " dim " << dim;
                     }
-                    for (int a = 0; a <= log2spp; ++a) {
-                        int nx = 1 << a, ny = 1 << (log2spp - a);
-                        std::vector<int> count(nx * ny, 0);
-                        for (Point2f u : pts) ++count[int(u.y * ny) * nx + int(u.x * nx)];
-                        for (int c : count)
-                            ASSERT_EQ(c, 1) << s.ToString() << " spp " << (1 << log2spp) << " interval "
-                                            << nx << "x" << ny;
-                    }
-                }
         }
+}
+
+// The global Sobol' sampler gives each pixel of a 2^m x 2^m image one index of each block of
+// 2^(2m): sample n of all pixels together is a block, and every dimension of a block is
+// stratified into 2^(2m) intervals, whatever the scramble.
+TEST(Samplers, SobolSampleOfEveryPixelTilesABlock) {
+    constexpr int kSide = 16;
+    for (RandomizeStrategy r : kAllRandomizations) {
+        SobolSampler s(8, Point2i(kSide, kSide - 3), r, 2);
+        for (int sample : {0, 1, 7})
+            for (int dim : {2, 3, 10, 700}) {
+                std::vector<int> count(kSide * kSide, 0);
+                for (int y = 0; y < kSide; ++y)
+                    for (int x = 0; x < kSide; ++x) {
+                        s.StartPixelSample(Point2i(x, y), sample, dim);
+                        ++count[size_t(s.Get1D() * kSide * kSide)];
+                    }
+                for (int c : count) ASSERT_EQ(c, 1) << s.ToString() << " sample " << sample << " dim " << dim;
+            }
+    }
+}
+
+// A Halton pixel's samples advance by the stride 2^j 3^k, coprime to every base but 2 and 3:
+// 2^a 3^b of them put one pixel offset in each cell of a 2^a x 3^b grid, b^k of them one value
+// of a base-b dimension in each interval of length b^-k, and 5 x 7 of them one point of the
+// (base 5, base 7) pair in each cell of a 5 x 7 grid, whatever the digit scramble.
+TEST(Samplers, HaltonPixelSamplesStratify) {
+    auto cellsOnce = [](const std::vector<Point2f> &pts, int nx, int ny) {
+        std::vector<int> count(size_t(nx * ny), 0);
+        for (Point2f u : pts) ++count[size_t(int(u.y * ny) * nx + int(u.x * nx))];
+        return std::all_of(count.begin(), count.end(), [](int c) { return c == 1; });
+    };
+    for (RandomizeStrategy r : {RandomizeStrategy::None, RandomizeStrategy::PermuteDigits, RandomizeStrategy::Owen}) {
+        HaltonSampler s(169, kResolution, r, 4);
+        for (Point2i p : {Point2i(0, 0), Point2i(13, 7), Point2i(36, 22)}) {
+            EXPECT_TRUE(cellsOnce(PixelPoints(s, p, -1, 36), 4, 9)) << s.ToString();
+            EXPECT_TRUE(cellsOnce(PixelPoints(s, p, -1, 16), 16, 1)) << s.ToString();
+            EXPECT_TRUE(cellsOnce(PixelPoints(s, p, 2, 35), 5, 7)) << s.ToString();
+            for (int dim : {2, 3, 4, 5}) {
+                int base = kPrimes[size_t(dim)], n = base * base;
+                std::vector<Point2f> values;
+                for (int i = 0; i < n; ++i) {
+                    s.StartPixelSample(p, i, dim);
+                    values.push_back(Point2f(s.Get1D(), 0));
+                }
+                EXPECT_TRUE(cellsOnce(values, n, 1)) << s.ToString() << " dim " << dim;
+            }
+        }
+    }
+}
+
+// With an 8 x 9 image (one tile of 2^3 x 3^2 pixels) the first samples of all pixels are the
+// first 72 Halton points, and each is the one whose first two dimensions fall in its pixel.
+// Unscrambled dimension 2 (base 5) tells which point a pixel got.
+TEST(Samplers, HaltonPixelsGetThePointsInsideThem) {
+    HaltonSampler s(4, Point2i(8, 9), RandomizeStrategy::None);
+    std::set<uint64_t> used;
+    for (int y = 0; y < 9; ++y)
+        for (int x = 0; x < 8; ++x) {
+            s.StartPixelSample(Point2i(x, y), 0, 2);
+            Float u = s.Get1D();
+            uint64_t index = 0;
+            while (index < 72 && RadicalInverse(2, index) != u) ++index;
+            ASSERT_LT(index, 72u) << "pixel " << x << "," << y;
+            EXPECT_EQ(int(RadicalInverse(0, index) * 8), x);
+            EXPECT_EQ(int(RadicalInverse(1, index) * 9), y);
+            used.insert(index);
+        }
+    EXPECT_EQ(used.size(), 72u);
+}
+
+TEST(Samplers, RefusedParameters) {
+    EXPECT_THROW(HaltonSampler(16, kResolution, RandomizeStrategy::FastOwen), std::runtime_error);
+    EXPECT_THROW(HaltonSampler(0, kResolution), std::runtime_error);
+    EXPECT_THROW(SobolSampler(16, Point2i(0, 4)), std::runtime_error);
+    EXPECT_THROW(SobolSampler(1 << 30, Point2i(1 << 20, 4)), std::runtime_error);  // 70-bit indices
+    EXPECT_THROW(PaddedSobolSampler(-2), std::runtime_error);
 }
 
 // Neighbouring pixels get different subsets (no tiled repetition): their first samples differ.
@@ -182,50 +291,6 @@ TEST(Samplers, IndependentMomentsAreUniform) {
     EXPECT_NEAR(sum / n, 0.5, 5 * 0.289 / sn);
     EXPECT_NEAR(sumSq / n, 1.0 / 3, 5 * 0.298 / sn);
     EXPECT_NEAR(sumProd / n, 0, 5 * (1.0 / 12) / sn);
-}
-
-TEST(LowDiscrepancy, BitHelpers) {
-    EXPECT_EQ(ReverseBits32(1u), 0x80000000u);
-    EXPECT_EQ(ReverseBits32(0x0000f00du), 0xb00f0000u);
-    EXPECT_EQ(EncodeMorton2(3, 0), 5u);
-    EXPECT_EQ(EncodeMorton2(0, 1), 2u);
-    EXPECT_EQ(EncodeMorton2(0xffffffffu, 0), 0x5555555555555555ULL);
-    // Sobol' dimension 1 in index order: 0, 1/2, 3/4, 1/4, 5/8 (m = 1, 3, 5, 15, ...).
-    EXPECT_EQ(SobolBits(1, 1), 0x80000000u);
-    EXPECT_EQ(SobolBits(2, 1), 0xc0000000u);
-    EXPECT_EQ(SobolBits(3, 1), 0x40000000u);
-    EXPECT_EQ(SobolBits(4, 1), 0xa0000000u);
-    EXPECT_EQ(SobolBits(8, 1), 0xf0000000u);
-    EXPECT_EQ(SobolBits(6, 0), 0x60000000u);  // van der Corput: 0.011b
-}
-
-TEST(LowDiscrepancy, PermutationElementIsAPermutation) {
-    for (uint32_t l : {1u, 2u, 3u, 7u, 16u, 33u, 100u})
-        for (uint32_t p : {0u, 1u, 0xdeadbeefu, 12345u}) {
-            std::vector<int> seen(l, 0);
-            for (uint32_t i = 0; i < l; ++i) ++seen[PermutationElement(i, l, p)];
-            for (int c : seen) EXPECT_EQ(c, 1) << "l " << l << " p " << p;
-        }
-    // Different keys give different orders.
-    std::vector<int> a, b;
-    for (uint32_t i = 0; i < 16; ++i) {
-        a.push_back(PermutationElement(i, 16, 1));
-        b.push_back(PermutationElement(i, 16, 2));
-    }
-    EXPECT_NE(a, b);
-}
-
-TEST(LowDiscrepancy, ScramblesAreBijective) {
-    // On the top 8 bits: distinct inputs stay distinct, for both Owen variants.
-    for (uint32_t seed : {0u, 1u, 0x9e3779b9u}) {
-        std::set<uint32_t> owen, fast;
-        for (uint32_t v = 0; v < 256; ++v) {
-            owen.insert(OwenScramble(v << 24, seed) >> 24);
-            fast.insert(FastOwenScramble(v << 24, seed) >> 24);
-        }
-        EXPECT_EQ(owen.size(), 256u);
-        EXPECT_EQ(fast.size(), 256u);
-    }
 }
 
 }  // namespace

@@ -173,6 +173,21 @@ TEST(SceneLoaderErrors, BadSensorAndShutterAreReportedWhereWritten) {
                                             "\"shutteropen\"");
 }
 
+// Halton's prime bases have no fast Owen scramble (pbrt-v4 refuses it too); an unknown
+// randomization is an error where written, naming the ones the sampler has.
+TEST(SceneLoaderErrors, BadSamplerRandomizationIsReportedWhereWritten) {
+    auto scene = [](const std::string &name, const std::string &sampler) {
+        return WriteScene(name, "Sampler " + sampler + "\nLookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\n"
+                                "Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 8\nWorldBegin\n");
+    };
+    std::string halton = scene("haltonfastowen.pbrt", R"("halton" "string randomization" "fastowen")");
+    EXPECT_EQ(LoadError(halton), halton + ":1:18: error: unknown randomization \"fastowen\" for the halton "
+                                          "sampler: expected none, permutedigits or owen");
+    std::string sobol = scene("sobolbad.pbrt", R"("sobol" "string randomization" "scrambled")");
+    EXPECT_EQ(LoadError(sobol), sobol + ":1:17: error: unknown randomization \"scrambled\" for the sobol "
+                                        "sampler: expected none, permutedigits, fastowen or owen");
+}
+
 TEST(SceneLoaderErrors, UnusedAndUnknownAreErrors) {
     std::string file = WriteScene("unused.pbrt", std::string(kHeader) + R"(
 Material "diffuse" "float roughnes" 0.2

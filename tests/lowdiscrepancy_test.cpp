@@ -1,0 +1,149 @@
+// The low-discrepancy building blocks: bit tricks, hashed permutations, scrambles, Sobol'
+// generator matrices (against Boost.Random's own Sobol' engine) and radical inverses.
+#include "pbrt_ext/util/lowdiscrepancy.h"
+
+#include <boost/random/sobol.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <vector>
+
+namespace pbrt {
+namespace {
+
+TEST(LowDiscrepancy, BitHelpers) {
+    EXPECT_EQ(ReverseBits32(1u), 0x80000000u);
+    EXPECT_EQ(ReverseBits32(0x0000f00du), 0xb00f0000u);
+    EXPECT_EQ(EncodeMorton2(3, 0), 5u);
+    EXPECT_EQ(EncodeMorton2(0, 1), 2u);
+    EXPECT_EQ(EncodeMorton2(0xffffffffu, 0), 0x5555555555555555ULL);
+    // Sobol' dimension 1 in index order: 0, 1/2, 3/4, 1/4, 5/8 (m = 1, 3, 5, 15, ...).
+    EXPECT_EQ(SobolBits(1, 1), 0x80000000u);
+    EXPECT_EQ(SobolBits(2, 1), 0xc0000000u);
+    EXPECT_EQ(SobolBits(3, 1), 0x40000000u);
+    EXPECT_EQ(SobolBits(4, 1), 0xa0000000u);
+    EXPECT_EQ(SobolBits(8, 1), 0xf0000000u);
+    EXPECT_EQ(SobolBits(6, 0), 0x60000000u);  // van der Corput: 0.011b
+}
+
+TEST(LowDiscrepancy, PermutationElementIsAPermutation) {
+    for (uint32_t l : {1u, 2u, 3u, 7u, 16u, 33u, 100u})
+        for (uint32_t p : {0u, 1u, 0xdeadbeefu, 12345u}) {
+            std::vector<int> seen(l, 0);
+            for (uint32_t i = 0; i < l; ++i) ++seen[PermutationElement(i, l, p)];
+            for (int c : seen) EXPECT_EQ(c, 1) << "l " << l << " p " << p;
+        }
+    // Different keys give different orders.
+    std::vector<int> a, b;
+    for (uint32_t i = 0; i < 16; ++i) {
+        a.push_back(PermutationElement(i, 16, 1));
+        b.push_back(PermutationElement(i, 16, 2));
+    }
+    EXPECT_NE(a, b);
+}
+
+TEST(LowDiscrepancy, ScramblesAreBijective) {
+    // On the top 8 bits: distinct inputs stay distinct, for both Owen variants.
+    for (uint32_t seed : {0u, 1u, 0x9e3779b9u}) {
+        std::set<uint32_t> owen, fast;
+        for (uint32_t v = 0; v < 256; ++v) {
+            owen.insert(OwenScramble(v << 24, seed) >> 24);
+            fast.insert(FastOwenScramble(v << 24, seed) >> 24);
+        }
+        EXPECT_EQ(owen.size(), 256u);
+        EXPECT_EQ(fast.size(), 256u);
+    }
+}
+
+// Boost's engine yields point n + 1 of the Gray-code order (Antonov and Saleev), component
+// by component: the XOR of the columns of gray(n + 1)'s set bits, in 64-bit fixed point.
+TEST(LowDiscrepancy, SobolMatricesMatchBoostRandomsEngine) {
+    constexpr int kDimensions = 64;
+    boost::random::sobol_engine<uint64_t, 64> engine(kDimensions);
+    for (uint64_t n = 1; n <= 4096; ++n) {
+        uint64_t gray = n ^ (n >> 1);
+        for (int d = 0; d < kDimensions; ++d)
+            ASSERT_EQ(SobolBitsFromMatrix(gray, SobolMatrix(d)), uint32_t(engine() >> 32))
+                << "point " << n << " dimension " << d;
+    }
+}
+
+TEST(LowDiscrepancy, SobolClosedFormsMatchTheirMatrices) {
+    for (int d : {0, 1})
+        for (uint64_t a : {1ull, 2ull, 3ull, 0x1234ull, 0xffffffffull, 0x100000000ull,
+                           0x123456789abcdull, (1ull << 51) | 5})
+            EXPECT_EQ(SobolBits(a, d), SobolBitsFromMatrix(a, SobolMatrix(d)))
+                << "dimension " << d << " index " << a;
+}
+
+// Every one-dimensional projection of Sobol' points is a (0, 1)-sequence: the first 2^k
+// points put one in each interval of length 2^-k. For the last dimensions too.
+TEST(LowDiscrepancy, SobolDimensionsAreZeroOneSequences) {
+    constexpr int k = 10;
+    for (int d : {2, 3, 17, 500, kSobolDimensions - 1}) {
+        std::vector<int> count(1 << k, 0);
+        for (uint64_t a = 0; a < (1u << k); ++a)
+            ++count[SobolBitsFromMatrix(a, SobolMatrix(d)) >> (32 - k)];
+        for (int c : count) ASSERT_EQ(c, 1) << "dimension " << d;
+    }
+}
+
+TEST(LowDiscrepancy, PrimesAndRadicalInverse) {
+    EXPECT_EQ(kPrimes[0], 2);
+    EXPECT_EQ(kPrimes[4], 11);
+    EXPECT_EQ(kPrimes[kPrimeTableSize - 1], 7919);  // the 1000th prime
+    EXPECT_FLOAT_EQ(RadicalInverse(0, 6), 0.375f);     // 110b -> 0.011b
+    EXPECT_FLOAT_EQ(RadicalInverse(1, 5), 7.0f / 9);   // 12 in base 3 -> 0.21
+    EXPECT_FLOAT_EQ(RadicalInverse(2, 7), 11.0f / 25);  // 12 in base 5 -> 0.21
+    // InverseRadicalInverse undoes the digit reversal on b^n points.
+    for (int base : {2, 3}) {
+        int n = 5, points = int(std::pow(base, n));
+        for (int i = 0; i < points; ++i) {
+            uint64_t reversed = uint64_t(std::lround(RadicalInverse(base == 2 ? 0 : 1, uint64_t(i)) * points));
+            EXPECT_EQ(InverseRadicalInverse(reversed, base, n), uint64_t(i));
+        }
+    }
+}
+
+TEST(LowDiscrepancy, HaltonDigitPermutationsAreSeededPermutations) {
+    HaltonDigitPermutations perm(7), other(8);
+    int differ = 0;
+    for (int b : {0, 1, 5, HaltonDigitPermutations::kTabledBases - 1, HaltonDigitPermutations::kTabledBases,
+                  kPrimeTableSize - 1}) {
+        int base = kPrimes[b];
+        for (int digitIndex = 0; digitIndex < RadicalInverseDigits(base); ++digitIndex) {
+            std::vector<int> seen(base, 0);
+            for (int digit = 0; digit < base; ++digit) {
+                int permuted = perm.Permute(b, digitIndex, digit);
+                ASSERT_EQ(permuted, perm.Compute(b, digitIndex, digit));  // the table is a cache
+                ++seen[permuted];
+                differ += permuted != other.Permute(b, digitIndex, digit);
+            }
+            for (int c : seen) ASSERT_EQ(c, 1) << "base " << base << " digit " << digitIndex;
+        }
+    }
+    EXPECT_GT(differ, 0);
+}
+
+// Scrambling permutes digits, so the first b^k indices still put one point in each interval
+// of length b^-k, whichever the scramble.
+TEST(LowDiscrepancy, ScrambledRadicalInversesStratify) {
+    HaltonDigitPermutations perm(3);
+    for (int b : {0, 1, 2, 3, 40}) {
+        int base = kPrimes[b], strata = base;
+        while (strata * base <= 4096) strata *= base;
+        std::vector<int> permuted(strata, 0), owen(strata, 0);
+        for (int i = 0; i < strata; ++i) {
+            ++permuted[int(double(ScrambledRadicalInverse(b, uint64_t(i), perm)) * strata)];
+            ++owen[int(double(OwenScrambledRadicalInverse(b, uint64_t(i), 0x5eed)) * strata)];
+        }
+        for (int i = 0; i < strata; ++i) {
+            ASSERT_EQ(permuted[i], 1) << "base " << base;
+            ASSERT_EQ(owen[i], 1) << "base " << base;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace pbrt
