@@ -273,39 +273,47 @@ class HaltonDigitPermutations {
     std::vector<uint16_t> table;
 };
 
-// The radical inverse with every digit position's digits permuted (Faure's scrambling, with
-// random permutations): each b^-k interval still holds the same points, in another order.
-inline Float ScrambledRadicalInverse(int baseIndex, uint64_t a, const HaltonDigitPermutations &perm) {
-    uint64_t base = uint64_t(kPrimes[baseIndex]);
-    int nDigits = perm.Digits(baseIndex);
-    uint64_t limit = ~0ull / base - base, reversedDigits = 0;
+// The first nDigits base-b digits of a, each replaced by permute(digitIndex, digit,
+// digitsSoFar), mirrored about the radix point. nDigits (RadicalInverseDigits) keeps the
+// reversed digits far inside 64 bits. Indices below 2^32 (nearly all) take 32-bit divisions,
+// which are several times faster than 64-bit ones on older x86 processors.
+template <typename UInt, typename Permute>
+inline Float PermutedRadicalInverse(UInt a, uint32_t base, int nDigits, Permute permute) {
+    uint64_t reversedDigits = 0;
     double invBase = 1.0 / double(base), invBaseM = 1;
-    for (int digitIndex = 0; digitIndex < nDigits && reversedDigits < limit; ++digitIndex) {
-        uint64_t next = a / base;
-        int digit = int(a - next * base);
-        reversedDigits = reversedDigits * base + uint64_t(perm.Permute(baseIndex, digitIndex, digit));
+    for (int digitIndex = 0; digitIndex < nDigits; ++digitIndex) {
+        UInt next = a / UInt(base);
+        int digit = int(a - next * UInt(base));
+        reversedDigits = reversedDigits * base + uint64_t(permute(digitIndex, digit, reversedDigits));
         invBaseM *= invBase;
         a = next;
     }
     return std::min(Float(double(reversedDigits) * invBaseM), OneMinusEpsilon);
 }
+template <typename Permute>
+inline Float PermutedRadicalInverse(uint64_t a, uint32_t base, int nDigits, Permute permute) {
+    if (a <= UINT32_MAX) return PermutedRadicalInverse(uint32_t(a), base, nDigits, permute);
+    return PermutedRadicalInverse<uint64_t>(a, base, nDigits, permute);
+}
+
+// The radical inverse with every digit position's digits permuted (Faure's scrambling, with
+// random permutations): each b^-k interval still holds the same points, in another order.
+inline Float ScrambledRadicalInverse(int baseIndex, uint64_t a, const HaltonDigitPermutations &perm) {
+    return PermutedRadicalInverse(a, uint32_t(kPrimes[baseIndex]), perm.Digits(baseIndex),
+                                  [&](int digitIndex, int digit, uint64_t) {
+                                      return perm.Permute(baseIndex, digitIndex, digit);
+                                  });
+}
 
 // Owen's nested scrambling in base b: each digit's permutation depends on the digits before
 // it (the interval the point already lies in), so points are also shuffled inside intervals.
 inline Float OwenScrambledRadicalInverse(int baseIndex, uint64_t a, uint32_t hash) {
-    uint64_t base = uint64_t(kPrimes[baseIndex]);
-    int nDigits = RadicalInverseDigits(int(base));
-    uint64_t limit = ~0ull / base - base, reversedDigits = 0;
-    double invBase = 1.0 / double(base), invBaseM = 1;
-    for (int digitIndex = 0; digitIndex < nDigits && reversedDigits < limit; ++digitIndex) {
-        uint64_t next = a / base;
-        uint32_t digit = uint32_t(a - next * base);
-        uint32_t digitHash = uint32_t(MixBits(hash ^ reversedDigits));
-        reversedDigits = reversedDigits * base + uint64_t(PermutationElement(digit, uint32_t(base), digitHash));
-        invBaseM *= invBase;
-        a = next;
-    }
-    return std::min(Float(double(reversedDigits) * invBaseM), OneMinusEpsilon);
+    uint32_t base = uint32_t(kPrimes[baseIndex]);
+    return PermutedRadicalInverse(a, base, RadicalInverseDigits(int(base)),
+                                  [&](int, int digit, uint64_t digitsSoFar) {
+                                      uint32_t digitHash = uint32_t(MixBits(hash ^ digitsSoFar));
+                                      return PermutationElement(uint32_t(digit), base, digitHash);
+                                  });
 }
 
 }  // namespace pbrt
