@@ -12,6 +12,8 @@ install(TARGETS pbrt_ext fabric pbrt_ext_cli
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# Where util/imagecodec.cpp looks for it from an installed executable (bin/../<libdir>/pbrt_ext).
+install(TARGETS pbrt_ext_imagecodec LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/pbrt_ext)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/pbrt_ext/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/pbrt_ext
         FILES_MATCHING PATTERN "*.h")
@@ -26,5 +28,4 @@ write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/pbrt_extConfigVersi
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/pbrt_extConfig.cmake
               ${CMAKE_CURRENT_BINARY_DIR}/pbrt_extConfigVersion.cmake
-              ${CMAKE_CURRENT_LIST_DIR}/OpenImageIOIncludes.cmake
         DESTINATION ${PBRT_EXT_INSTALL_CMAKEDIR})

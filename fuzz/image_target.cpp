@@ -7,8 +7,7 @@
 #include "fuzz/scratch.h"
 
 #include "pbrt_ext/util/image.h"
-
-#include <OpenImageIO/imageio.h>
+#include "pbrt_ext/util/imagecodec.h"
 
 #include <string>
 
@@ -27,7 +26,7 @@ void FuzzImage(std::span<const uint8_t> data) {
         return;
     // One thread in OpenImageIO and OpenEXR: a fuzzer is a single-core job, and a deterministic one.
     // Set once: setting "threads" again resizes OpenImageIO's thread pool, which costs milliseconds.
-    static const bool oneThread = OIIO::attribute("threads", 1) && OIIO::attribute("exr_threads", 1);
+    static const bool oneThread = (GetImageCodec().SetThreads(1), true);
     (void)oneThread;
     std::string extension = kExtensions[data[0] % std::size(kExtensions)];
     std::string path = WriteScratchFile("image", "input." + extension, data.subspan(1));

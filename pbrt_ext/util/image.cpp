@@ -3,6 +3,7 @@
 #include "pbrt_ext/util/colorspace.h"
 
 #include "pbrt_ext/util/atomicfile.h"
+#include "pbrt_ext/util/imagecodec.h"
 #include "pbrt_ext/util/imageheaders.h"
 #include "pbrt_ext/util/resourcelimits.h"
 
@@ -14,7 +15,6 @@
 #include <ImfIntAttribute.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -39,22 +39,17 @@ std::string LowercaseExtension(const std::string &path) {
     return ext;
 }
 
-bool IsFloatFormat(OIIO::TypeDesc format) {
-    return format.basetype == OIIO::TypeDesc::FLOAT || format.basetype == OIIO::TypeDesc::HALF ||
-           format.basetype == OIIO::TypeDesc::DOUBLE;
-}
-
 // The file channels that become R, G, B: named R/G/B channels where present (EXR may hold
 // more, in any order), else a single gray channel replicated, else the first three.
-std::array<int, 3> RGBChannelIndices(const OIIO::ImageSpec &spec) {
+std::array<int, 3> RGBChannelIndices(const ImageFileSpec &spec) {
     std::array<int, 3> idx = {-1, -1, -1};
     const char *names[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c)
-        for (int i = 0; i < spec.nchannels; ++i)
-            if (i < int(spec.channelnames.size()) && spec.channelnames[i] == names[c]) idx[c] = i;
+        for (int i = 0; i < spec.nChannels; ++i)
+            if (i < int(spec.channelNames.size()) && spec.channelNames[size_t(i)] == names[c]) idx[c] = i;
     if (idx[0] >= 0 && idx[1] >= 0 && idx[2] >= 0) return idx;
     // Gray, or gray and alpha.
-    if (spec.nchannels < 3) return {0, 0, 0};
+    if (spec.nChannels < 3) return {0, 0, 0};
     return {0, 1, 2};
 }
 
@@ -63,18 +58,15 @@ std::array<int, 3> RGBChannelIndices(const OIIO::ImageSpec &spec) {
 // its "read_chunk" (256) and a multiple of the rows per strip (64 unless a TIFF says), however few
 // the image has; for a tiled file, a row of native tiles. The header decides both: a wide image of
 // four rows made it allocate 3 GiB (found by the image fuzz target, docs/fuzzing.md).
-uint64_t DecoderBufferBytes(const OIIO::ImageSpec &spec) {
-    uint64_t scanline = std::max<uint64_t>(spec.scanline_bytes(true), 1);
-    if (spec.tile_width > 0) {
-        uint64_t tilesAcross = (uint64_t(spec.width) + spec.tile_width - 1) / spec.tile_width;
-        return SaturatingProduct({tilesAcross, spec.tile_bytes(true)});
+uint64_t DecoderBufferBytes(const ImageFileSpec &spec) {
+    uint64_t scanline = std::max<uint64_t>(spec.scanlineBytes, 1);
+    if (spec.tileWidth > 0) {
+        uint64_t tilesAcross = (uint64_t(spec.width) + uint64_t(spec.tileWidth) - 1) / uint64_t(spec.tileWidth);
+        return SaturatingProduct({tilesAcross, spec.tileBytes});
     }
-    int readChunk = 256;
-    OIIO::getattribute("read_chunk", readChunk);
-    uint64_t rows = std::max<uint64_t>((uint64_t(1) << 26) / scanline, std::max(readChunk, 1));
-    int rowsPerStrip = spec.get_int_attribute("tiff:RowsPerStrip", 64);
-    if (rowsPerStrip > 0)
-        rows = (rows + rowsPerStrip - 1) / rowsPerStrip * rowsPerStrip;
+    uint64_t rows = std::max<uint64_t>((uint64_t(1) << 26) / scanline, uint64_t(std::max(spec.readChunk, 1)));
+    if (spec.rowsPerStrip > 0)
+        rows = (rows + uint64_t(spec.rowsPerStrip) - 1) / uint64_t(spec.rowsPerStrip) * uint64_t(spec.rowsPerStrip);
     return SaturatingProduct({rows, scanline});
 }
 
@@ -142,10 +134,14 @@ std::string ColorEncoding::ToString() const {
 
 Image Image::Read(const std::string &path, ColorEncoding encoding) {
     CheckDeclaredSizes(path);  // before a decoder allocates what a corrupt header declares
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
-    if (!in) ThrowFileError(path, "cannot read the image: " + OIIO::geterror());
-    const OIIO::ImageSpec &spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    std::unique_ptr<ImageFileReader> in;
+    try {
+        in = GetImageCodec().Open(path);
+    } catch (const std::runtime_error &e) {
+        ThrowFileError(path, e.what());
+    }
+    const ImageFileSpec &spec = in->Spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nChannels <= 0)
         ThrowFileError(path, "the image has no pixels");
     // read_image would fill every slice of a volume into a buffer sized for one.
     if (spec.depth > 1)
@@ -155,26 +151,28 @@ Image Image::Read(const std::string &path, ColorEncoding encoding) {
     // the image's own three.
     CheckMemory(FileLoc{path, 0, 0},
                 fmt::format("the {} x {} image of {} channel{}", spec.width, spec.height,
-                            spec.nchannels, spec.nchannels == 1 ? "" : "s"),
+                            spec.nChannels, spec.nChannels == 1 ? "" : "s"),
                 SaturatingProduct({uint64_t(spec.width), uint64_t(spec.height),
-                                   uint64_t(spec.nchannels) + NChannels(), sizeof(float)}));
+                                   uint64_t(spec.nChannels) + NChannels(), sizeof(float)}));
     CheckMemory(FileLoc{path, 0, 0},
                 fmt::format("decoding the {} x {} image", spec.width, spec.height),
                 DecoderBufferBytes(spec));
 
-    std::vector<float> raw(size_t(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, raw.data()))
-        ThrowFileError(path, "cannot decode the pixels: " + in->geterror());
-    in->close();
+    std::vector<float> raw(size_t(spec.width) * size_t(spec.height) * size_t(spec.nChannels));
+    try {
+        in->ReadPixels(raw.data());
+    } catch (const std::runtime_error &e) {
+        ThrowFileError(path, e.what());
+    }
 
     // Integer pixels are display-encoded; float pixels are radiometric already.
-    if (IsFloatFormat(spec.format)) encoding = ColorEncoding::Linear();
+    if (spec.isFloat) encoding = ColorEncoding::Linear();
     std::array<int, 3> channel = RGBChannelIndices(spec);
     Image image(Point2i(spec.width, spec.height));
     for (int y = 0; y < spec.height; ++y)
         for (int x = 0; x < spec.width; ++x)
             for (int c = 0; c < 3; ++c) {
-                Float v = raw[(size_t(y) * spec.width + x) * spec.nchannels + channel[c]];
+                Float v = raw[(size_t(y) * size_t(spec.width) + size_t(x)) * size_t(spec.nChannels) + size_t(channel[c])];
                 image.SetChannel(Point2i(x, y), c, encoding.ToLinear(v));
             }
     return image;
@@ -185,7 +183,7 @@ void Image::Write(const std::string &path, const ImageMetadata &metadata) const 
     if (LowercaseExtension(path) == ".exr")
         WriteFileAtomically(path, [&](const std::string &tmp) { WriteEXR(path, tmp, metadata); });
     else
-        WriteFileAtomically(path, [&](const std::string &tmp) { WriteOIIO(path, tmp); });
+        WriteFileAtomically(path, [&](const std::string &tmp) { Write8Bit(path, tmp); });
 }
 
 void Image::WriteEXR(const std::string &path, const std::string &tmpPath,
@@ -239,21 +237,17 @@ void Image::WriteEXR(const std::string &path, const std::string &tmpPath,
     }
 }
 
-void Image::WriteOIIO(const std::string &path, const std::string &tmpPath) const {
-    // The format follows the target's extension, not the temporary name's.
-    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
-    if (!out) ThrowFileError(path, "no image writer for this extension: " + OIIO::geterror());
-
+void Image::Write8Bit(const std::string &path, const std::string &tmpPath) const {
     std::vector<uint8_t> encoded(pixels.size());
     for (size_t i = 0; i < pixels.size(); ++i) {
         Float v = pixels[i] > 0 ? std::min<Float>(pixels[i], 1) : 0;  // NaN becomes 0 too
         encoded[i] = uint8_t(std::lround(LinearToSRGB(v) * 255));
     }
-    OIIO::ImageSpec spec(resolution.x, resolution.y, 3, OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:ColorSpace", "sRGB");
-    if (!out->open(tmpPath, spec) || !out->write_image(OIIO::TypeDesc::UINT8, encoded.data()) ||
-        !out->close())
-        ThrowFileError(path, "cannot write the image: " + out->geterror());
+    try {
+        GetImageCodec().Write8Bit(path, tmpPath, resolution.x, resolution.y, encoded.data());
+    } catch (const std::runtime_error &e) {
+        ThrowFileError(path, e.what());
+    }
 }
 
 }  // namespace pbrt

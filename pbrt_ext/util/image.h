@@ -4,9 +4,9 @@
 // Values are always linear; encodings apply only at the integer file boundary. Reading goes
 // through OpenImageIO (integer formats such as PNG, JPEG, TGA are decoded with a ColorEncoding,
 // sRGB unless the caller says otherwise; float formats such as EXR, PFM, HDR are taken as
-// linear). Writing EXR goes through OpenEXR (32-bit float RGB
-// with the metadata as header attributes); any other extension goes through OpenImageIO as 8-bit
-// sRGB. Files are written atomically (util/atomicfile.h): a failed or interrupted write never
+// linear). Writing EXR goes through OpenEXR (32-bit float RGB with the metadata as header
+// attributes); any other extension goes through OpenImageIO as 8-bit sRGB. OpenImageIO is a
+// module loaded on first use (util/imagecodec.h). Files are written atomically (util/atomicfile.h): a failed or interrupted write never
 // leaves a partial file. File errors throw std::runtime_error("<path>: error: <what>").
 //
 // This is a host type (the pixels live in a std::vector), like pbrt-v4's Image outside its GPU
@@ -174,7 +174,7 @@ class Image {
   private:
     void WriteEXR(const std::string &path, const std::string &tmpPath,
                   const ImageMetadata &metadata) const;
-    void WriteOIIO(const std::string &path, const std::string &tmpPath) const;
+    void Write8Bit(const std::string &path, const std::string &tmpPath) const;
 
     size_t PixelOffset(Point2i p) const {
         return 3 * (size_t(p.y) * size_t(resolution.x) + size_t(p.x));

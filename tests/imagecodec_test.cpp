@@ -1,0 +1,72 @@
+// OpenImageIO is a module loaded on first use (util/imagecodec.h): a render written as EXR never
+// loads it, which is what keeps start-up at pbrt-v4's (docs/benchmarks.md), and one written as
+// PNG loads it and writes the file. The dynamic loader's own log (LD_DEBUG=libs) of the real
+// command says which libraries a process loaded.
+#include "pbrt_ext/util/image.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+using namespace pbrt;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kFurnace = std::string(PBRT_EXT_TEST_DATA_DIR) + "/interrupt/furnace.pbrt";
+
+struct CommandRun {
+    int status = -1;
+    std::string log;
+};
+
+// The command on the furnace at 1 sample per pixel, with the loader's log in its output.
+CommandRun RenderWithLoaderLog(const fs::path &outfile) {
+    std::string command = "LD_DEBUG=libs " + std::string(PBRT_EXT_CLI) + " --spp 1 --quiet --outfile " +
+                          outfile.string() + " " + kFurnace + " 2>&1";
+    CommandRun run;
+    FILE *pipe = popen(command.c_str(), "r");
+    if (!pipe) return run;
+    std::array<char, 4096> buffer;
+    while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) run.log.append(buffer.data(), n);
+    int status = pclose(pipe);
+    run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return run;
+}
+
+fs::path ScratchDir() {
+    fs::path dir = fs::temp_directory_path() / ("pbrt_ext_imagecodec_" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    return dir;
+}
+
+TEST(ImageCodec, ExrOutputNeverLoadsOpenImageIO) {
+    fs::path out = ScratchDir() / "furnace.exr";
+    CommandRun run = RenderWithLoaderLog(out);
+    ASSERT_EQ(run.status, 0) << run.log;
+    ASSERT_NE(run.log.find("calling init"), std::string::npos) << "no loader log: " << run.log;
+    EXPECT_EQ(run.log.find("libOpenImageIO"), std::string::npos);
+    EXPECT_EQ(run.log.find("libpbrt_ext_imagecodec"), std::string::npos);
+    EXPECT_NEAR(Image::Read(out.string()).GetChannels(Point2i(512, 512)).g, 0.5, 0.2);
+    fs::remove_all(out.parent_path());
+}
+
+TEST(ImageCodec, PngOutputLoadsTheModuleAndWrites) {
+    fs::path out = ScratchDir() / "furnace.png";
+    CommandRun run = RenderWithLoaderLog(out);
+    ASSERT_EQ(run.status, 0) << run.log;
+    EXPECT_NE(run.log.find("libpbrt_ext_imagecodec"), std::string::npos);
+    EXPECT_NE(run.log.find("libOpenImageIO"), std::string::npos);
+    Image image = Image::Read(out.string());
+    EXPECT_EQ(image.Resolution(), Point2i(1024, 1024));
+    fs::remove_all(out.parent_path());
+}
+
+}  // namespace
