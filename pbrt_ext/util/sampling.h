@@ -162,6 +162,27 @@ PBRT_CPU_GPU inline Point2f InvertUniformConeSample(Vector3f w, Float cosThetaMa
     return Point2f((1 - w.z) / (1 - cosThetaMax), detail::Azimuth(w.x, w.y) * Inv2Pi);
 }
 
+// Density on [0,1]^2 proportional to the bilinear interpolation of corner weights w (00, 10,
+// 01, 11): v from its marginal, then u given v (pbrt-v4's SampleBilinear/BilinearPDF). Used to
+// follow an area element (bilinear patches) or the cosine factor across an emitter's solid
+// angle (spherical triangles and rectangles).
+PBRT_CPU_GPU inline Point2f SampleBilinear(Point2f u, const std::array<Float, 4> &w) {
+    Float y = SampleLinear(u[1], w[0] + w[1], w[2] + w[3]);
+    Float x = SampleLinear(u[0], Lerp(y, w[0], w[2]), Lerp(y, w[1], w[3]));
+    return Point2f(x, y);
+}
+PBRT_CPU_GPU inline Float BilinearPDF(Point2f p, const std::array<Float, 4> &w) {
+    if (p.x < 0 || p.x > 1 || p.y < 0 || p.y > 1)
+        return 0;
+    Float sum = w[0] + w[1] + w[2] + w[3];
+    if (sum == 0)
+        return 1;
+    Float bilerp = (1 - p.x) * (1 - p.y) * w[0] + p.x * (1 - p.y) * w[1] + (1 - p.x) * p.y * w[2] +
+                   p.x * p.y * w[3];
+    return 4 * bilerp / sum;
+}
+
+
 // Barycentrics uniform over a triangle. The map folds the unit square onto the triangle
 // along its diagonal without the square root of the classic warp, so neighbouring u stay
 // neighbours (pbrt-v4, after Heitz's "A low-distortion map between triangle and square").

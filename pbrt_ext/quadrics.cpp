@@ -1,0 +1,348 @@
+// Quadrics (pbrt-v4's Sphere and Disk). Where this differs from pbrt-v4, and why:
+//   - Partial spheres and disks (zMin/zMax/phiMax, innerRadius) are sampled over the part that
+//     exists, and area densities account for a scaling transform (Nanson's formula), so that
+//     Sample and PDF agree with Intersect; pbrt-v4 samples the whole shape in object units.
+//   - Sphere and disk samples orient n exactly as their intersections do (reverseOrientation ^
+//     transformSwapsHandedness); pbrt-v4's samples use reverseOrientation alone, which disagrees
+//     with its own intersections under a mirroring transform.
+#include "pbrt_ext/shapes.h"
+#include "pbrt_ext/shapes_internal.h"
+
+#include "pbrt_ext/util/sampling.h"
+
+#include <cstdio>
+
+namespace pbrt {
+
+using namespace shapedetail;
+
+// ---------------------------------------------------------------------------------------
+// Sphere
+
+Sphere::Sphere(const Transform &worldFromObject, bool reverseOrientation, Float radius,
+               Float z0, Float z1, Float phiMaxDegrees)
+    : worldFromObject(worldFromObject),
+      objectFromWorld(Inverse(worldFromObject)),
+      reverseOrientation(reverseOrientation),
+      transformSwapsHandedness(worldFromObject.SwapsHandedness()),
+      radius(radius),
+      zMin(Clamp(std::min(z0, z1), -radius, radius)),
+      zMax(Clamp(std::max(z0, z1), -radius, radius)),
+      thetaZMin(std::acos(Clamp(std::min(z0, z1) / radius, -1, 1))),
+      thetaZMax(std::acos(Clamp(std::max(z0, z1) / radius, -1, 1))),
+      phiMax(Radians(Clamp(phiMaxDegrees, 0, 360))) {
+    Vector3f ax = worldFromObject(Vector3f(1, 0, 0)), ay = worldFromObject(Vector3f(0, 1, 0)),
+             az = worldFromObject(Vector3f(0, 0, 1));
+    absDet = std::abs(Dot(ax, Cross(ay, az)));
+    objectArea = phiMax * radius * (zMax - zMin);
+    // The object-space area element is radius dz dphi; the transform scales it pointwise.
+    worldArea = objectArea * Float(IntegrateUnitSquare([&](Float s, Float t) {
+                    Float z = Lerp(s, zMin, zMax), phi = t * phiMax;
+                    Float r = SafeSqrt(Sqr(radius) - Sqr(z));
+                    return AreaScale(Point3f(r * std::cos(phi), r * std::sin(phi), z));
+                }));
+
+    Float l = Length(ax), tol = 1e-4f * Sqr(l);
+    bool similarity = std::abs(LengthSquared(ay) - Sqr(l)) <= tol &&
+                      std::abs(LengthSquared(az) - Sqr(l)) <= tol &&
+                      std::abs(Dot(ax, ay)) <= tol && std::abs(Dot(ax, az)) <= tol &&
+                      std::abs(Dot(ay, az)) <= tol;
+    bool whole = zMin <= -radius && zMax >= radius && phiMax >= 2 * Pi;
+    sampleCone = similarity && whole;
+    worldRadius = radius * l;
+}
+
+Bounds3f Sphere::Bounds() const {
+    return worldFromObject(Bounds3f(Point3f(-radius, -radius, zMin), Point3f(radius, radius, zMax)));
+}
+
+Float Sphere::Area() const {
+    return worldArea;
+}
+
+Float Sphere::AreaScale(Point3f pObj) const {
+    // Nanson's formula: a linear map M scales area at unit normal n by |det M| |M^-T n|.
+    Normal3f nObj(pObj.x / radius, pObj.y / radius, pObj.z / radius);
+    return absDet * Length(worldFromObject(nObj));
+}
+
+Float Sphere::AreaPDF(Point3f pObj) const {
+    return 1 / (objectArea * AreaScale(pObj));
+}
+
+Point2f Sphere::UV(Point3f pObj) const {
+    Float theta = SafeACos(pObj.z / radius);
+    return Point2f(Azimuth(pObj.x, pObj.y) / phiMax, (theta - thetaZMin) / (thetaZMax - thetaZMin));
+}
+
+pstd::optional<QuadricIntersection> Sphere::BasicIntersect(const Ray &r, Float tMax) const {
+    Point3f oi = objectFromWorld(r.o);
+    Vector3f di = objectFromWorld(r.d);
+    // In double, with the discriminant written as 4a (r + l)(r - l), l the distance from the
+    // centre to the line: no cancellation for rays far from the sphere (pbrt-v4 6.8.3).
+    double ox = oi.x, oy = oi.y, oz = oi.z, dx = di.x, dy = di.y, dz = di.z;
+    double a = dx * dx + dy * dy + dz * dz, b = 2 * (dx * ox + dy * oy + dz * oz);
+    double c = ox * ox + oy * oy + oz * oz - double(radius) * radius;
+    if (a == 0)
+        return {};
+    double f = b / (2 * a);
+    double vx = ox - f * dx, vy = oy - f * dy, vz = oz - f * dz;
+    double len = std::sqrt(vx * vx + vy * vy + vz * vz);
+    double discrim = 4 * a * (radius + len) * (radius - len);
+    if (discrim < 0)
+        return {};
+    double rootDiscrim = std::sqrt(discrim);
+    double q = (b < 0) ? -0.5 * (b - rootDiscrim) : -0.5 * (b + rootDiscrim);
+    if (q == 0)
+        return {};
+    double t0 = q / a, t1 = c / q;
+    if (t0 > t1)
+        std::swap(t0, t1);
+
+    // The nearer root first; the farther one when clipping removes the nearer.
+    for (double t : {t0, t1}) {
+        if (t <= 0)
+            continue;
+        if (!(t < tMax))
+            return {};
+        Point3f pHit(Float(ox + t * dx), Float(oy + t * dy), Float(oz + t * dz));
+        pHit *= radius / Length(Vector3f(pHit));
+        if (pHit.x == 0 && pHit.y == 0)
+            pHit.x = 1e-5f * radius;  // keeps phi and dp/du defined at the poles
+        bool clipped = (zMin > -radius && pHit.z < zMin) || (zMax < radius && pHit.z > zMax) ||
+                       Azimuth(pHit.x, pHit.y) > phiMax;
+        if (!clipped)
+            return QuadricIntersection{Float(t), pHit};
+    }
+    return {};
+}
+
+SurfaceInteraction Sphere::InteractionFromIntersection(const QuadricIntersection &isect,
+                                                       Vector3f wo) const {
+    Point3f p = isect.pObj;
+    Float zRadius = std::sqrt(Sqr(p.x) + Sqr(p.y));
+    Float cosPhi = p.x / zRadius, sinPhi = p.y / zRadius;
+    Float sinTheta = SafeSqrt(1 - Sqr(p.z / radius));
+    Vector3f dpdu(-phiMax * p.y, phiMax * p.x, 0);
+    Vector3f dpdv = (thetaZMax - thetaZMin) *
+                    Vector3f(p.z * cosPhi, p.z * sinPhi, -radius * sinTheta);
+    SurfaceInteraction si = TransformInteraction(
+        worldFromObject, MakeInteraction(p, UV(p), Vector3f(), dpdu, dpdv, FlipNormal()));
+    si.wo = wo;
+    return si;
+}
+
+pstd::optional<ShapeIntersection> Sphere::Intersect(const Ray &ray, Float tMax) const {
+    pstd::optional<QuadricIntersection> isect = BasicIntersect(ray, tMax);
+    if (!isect)
+        return {};
+    return ShapeIntersection{InteractionFromIntersection(*isect, -Normalize(ray.d)),
+                             isect->tHit};
+}
+
+bool Sphere::IntersectP(const Ray &ray, Float tMax) const {
+    return BasicIntersect(ray, tMax).has_value();
+}
+
+pstd::optional<ShapeSample> Sphere::Sample(Point2f u) const {
+    // Archimedes: uniform z and phi are uniform in area, also on a clipped zone.
+    Float z = Lerp(u[0], zMin, zMax), phi = u[1] * phiMax;
+    Float r = SafeSqrt(Sqr(radius) - Sqr(z));
+    Point3f pObj(r * std::cos(phi), r * std::sin(phi), z);
+    Normal3f n = Normalize(worldFromObject(Normal3f(pObj.x, pObj.y, pObj.z)));
+    if (FlipNormal())
+        n = -n;
+    return MakeSample(worldFromObject(pObj), n, UV(pObj), AreaPDF(pObj));
+}
+
+namespace {
+// Below sin^2(1.5 degrees) 1 - cos(thetaMax) loses all precision; its series takes over (pbrt-v4).
+constexpr Float kSmallCone = 0.00068523f;
+}  // namespace
+
+pstd::optional<ShapeSample> Sphere::Sample(const ShapeSampleContext &ctx, Point2f u) const {
+    Point3f pCenter = worldFromObject(Point3f(0, 0, 0));
+    if (!sampleCone ||
+        DistanceSquared(OffsetRayOrigin(ctx.p, ctx.n, pCenter - ctx.p), pCenter) <=
+            Sqr(worldRadius))
+        return SampleBySolidAngle(*this, ctx, u);
+
+    // Uniform in the cone of directions toward the sphere; the sampled direction is turned
+    // into the point it hits through the angle alpha at the centre (pbrt-v4 6.2.4).
+    Float sinThetaMax = worldRadius / Distance(ctx.p, pCenter);
+    Float sin2ThetaMax = Sqr(sinThetaMax);
+    Float cosThetaMax = SafeSqrt(1 - sin2ThetaMax), oneMinusCosThetaMax = 1 - cosThetaMax;
+    Float cosTheta = (cosThetaMax - 1) * u[0] + 1;
+    Float sin2Theta = 1 - Sqr(cosTheta);
+    if (sin2ThetaMax < kSmallCone) {
+        sin2Theta = sin2ThetaMax * u[0];
+        cosTheta = std::sqrt(1 - sin2Theta);
+        oneMinusCosThetaMax = sin2ThetaMax / 2;
+    }
+    Float cosAlpha = sin2Theta / sinThetaMax +
+                     cosTheta * SafeSqrt(1 - sin2Theta / Sqr(sinThetaMax));
+    Float sinAlpha = SafeSqrt(1 - Sqr(cosAlpha));
+    Vector3f w = SphericalDirection(sinAlpha, cosAlpha, u[1] * 2 * Pi);
+    Frame frame = Frame::FromZ(Normalize(pCenter - ctx.p));
+    Normal3f n(frame.FromLocal(-w));
+    Point3f p = pCenter + worldRadius * Vector3f(n);
+    if (FlipNormal())
+        n = -n;
+    return MakeSample(p, n, UV(objectFromWorld(p)), 1 / (2 * Pi * oneMinusCosThetaMax));
+}
+
+Float Sphere::PDF(const ShapeSampleContext &ctx, Vector3f wi) const {
+    Vector3f w = Normalize(wi);
+    Point3f pCenter = worldFromObject(Point3f(0, 0, 0));
+    if (!sampleCone ||
+        DistanceSquared(OffsetRayOrigin(ctx.p, ctx.n, pCenter - ctx.p), pCenter) <=
+            Sqr(worldRadius)) {
+        pstd::optional<QuadricIntersection> isect = BasicIntersect(SpawnRay(ctx, w), Infinity);
+        if (!isect)
+            return 0;
+        Point3f pObj = isect->pObj;
+        Normal3f n = worldFromObject(Normal3f(pObj.x, pObj.y, pObj.z));
+        return AreaToSolidAngle(AreaPDF(pObj), ctx.p, worldFromObject(pObj), Normalize(n), w);
+    }
+    // The cone test works with sines, which stay accurate for small cones; the slack admits
+    // directions that rounding put just outside the cone the sampler drew them from.
+    Vector3f toCenter = pCenter - ctx.p;
+    Float sin2ThetaMax = Sqr(worldRadius) / LengthSquared(toCenter);
+    Vector3f axis = Normalize(toCenter);
+    if (Dot(w, axis) <= 0 || LengthSquared(Cross(w, axis)) > sin2ThetaMax * (1 + 1e-4f))
+        return 0;
+    Float oneMinusCosThetaMax = sin2ThetaMax < kSmallCone ? sin2ThetaMax / 2
+                                                          : 1 - SafeSqrt(1 - sin2ThetaMax);
+    return 1 / (2 * Pi * oneMinusCosThetaMax);
+}
+
+std::string Sphere::ToString() const {
+    char buf[256];
+    std::snprintf(buf, sizeof(buf),
+                  "[ Sphere radius: %g zMin: %g zMax: %g phiMax: %g reverseOrientation: %s "
+                  "transformSwapsHandedness: %s ]",
+                  radius, zMin, zMax, Degrees(phiMax), reverseOrientation ? "true" : "false",
+                  transformSwapsHandedness ? "true" : "false");
+    return buf;
+}
+
+// ---------------------------------------------------------------------------------------
+// Disk
+
+Disk::Disk(const Transform &worldFromObject, bool reverseOrientation, Float height,
+           Float radius, Float innerRadius, Float phiMaxDegrees)
+    : worldFromObject(worldFromObject),
+      objectFromWorld(Inverse(worldFromObject)),
+      reverseOrientation(reverseOrientation),
+      transformSwapsHandedness(worldFromObject.SwapsHandedness()),
+      height(height),
+      radius(radius),
+      innerRadius(innerRadius),
+      phiMax(Radians(Clamp(phiMaxDegrees, 0, 360))) {
+    // The plane's area scales uniformly, by |M ex x M ey|.
+    Float scale = Length(Cross(worldFromObject(Vector3f(1, 0, 0)),
+                               worldFromObject(Vector3f(0, 1, 0))));
+    worldArea = phiMax / 2 * (Sqr(radius) - Sqr(innerRadius)) * scale;
+}
+
+Bounds3f Disk::Bounds() const {
+    return worldFromObject(
+        Bounds3f(Point3f(-radius, -radius, height), Point3f(radius, radius, height)));
+}
+
+Float Disk::Area() const {
+    return worldArea;
+}
+
+Point2f Disk::UV(Point3f pObj) const {
+    Float rHit = std::sqrt(Sqr(pObj.x) + Sqr(pObj.y));
+    Float v = radius > innerRadius ? (radius - rHit) / (radius - innerRadius) : 0;
+    return Point2f(Azimuth(pObj.x, pObj.y) / phiMax, v);
+}
+
+pstd::optional<QuadricIntersection> Disk::BasicIntersect(const Ray &r, Float tMax) const {
+    Point3f oi = objectFromWorld(r.o);
+    Vector3f di = objectFromWorld(r.d);
+    if (di.z == 0)
+        return {};
+    Float tShapeHit = (height - oi.z) / di.z;
+    if (tShapeHit <= 0 || !(tShapeHit < tMax))
+        return {};
+    Point3f pHit = oi + tShapeHit * di;
+    Float dist2 = Sqr(pHit.x) + Sqr(pHit.y);
+    if (dist2 > Sqr(radius) || dist2 < Sqr(innerRadius))
+        return {};
+    if (dist2 == 0)
+        pHit.x = 1e-5f * radius;  // keeps phi and the tangents defined at the centre
+    if (Azimuth(pHit.x, pHit.y) > phiMax)
+        return {};
+    pHit.z = height;
+    return QuadricIntersection{tShapeHit, pHit};
+}
+
+SurfaceInteraction Disk::InteractionFromIntersection(const QuadricIntersection &isect,
+                                                     Vector3f wo) const {
+    Point3f p = isect.pObj;
+    Float rHit = std::sqrt(Sqr(p.x) + Sqr(p.y));
+    Vector3f dpdu(-phiMax * p.y, phiMax * p.x, 0);
+    Vector3f dpdv = Vector3f(p.x, p.y, 0) * ((innerRadius - radius) / rHit);
+    SurfaceInteraction si = TransformInteraction(
+        worldFromObject, MakeInteraction(p, UV(p), Vector3f(), dpdu, dpdv, FlipNormal()));
+    si.wo = wo;
+    return si;
+}
+
+pstd::optional<ShapeIntersection> Disk::Intersect(const Ray &ray, Float tMax) const {
+    pstd::optional<QuadricIntersection> isect = BasicIntersect(ray, tMax);
+    if (!isect)
+        return {};
+    return ShapeIntersection{InteractionFromIntersection(*isect, -Normalize(ray.d)),
+                             isect->tHit};
+}
+
+bool Disk::IntersectP(const Ray &ray, Float tMax) const {
+    return BasicIntersect(ray, tMax).has_value();
+}
+
+pstd::optional<ShapeSample> Disk::Sample(Point2f u) const {
+    // The concentric map keeps strata compact on a whole disk; an annulus or sector takes the
+    // polar map restricted to it.
+    Point2f pd;
+    if (innerRadius == 0 && phiMax >= 2 * Pi) {
+        pd = SampleUniformDiskConcentric(u) * radius;
+    } else {
+        Float r = std::sqrt(Lerp(u[0], Sqr(innerRadius), Sqr(radius))), phi = u[1] * phiMax;
+        pd = Point2f(r * std::cos(phi), r * std::sin(phi));
+    }
+    Point3f pObj(pd.x, pd.y, height);
+    Normal3f n = Normalize(worldFromObject(Normal3f(0, 0, 1)));
+    if (FlipNormal())
+        n = -n;
+    return MakeSample(worldFromObject(pObj), n, UV(pObj), 1 / Area());
+}
+
+pstd::optional<ShapeSample> Disk::Sample(const ShapeSampleContext &ctx, Point2f u) const {
+    return SampleBySolidAngle(*this, ctx, u);
+}
+
+Float Disk::PDF(const ShapeSampleContext &ctx, Vector3f wi) const {
+    Vector3f w = Normalize(wi);
+    pstd::optional<QuadricIntersection> isect = BasicIntersect(SpawnRay(ctx, w), Infinity);
+    if (!isect)
+        return 0;
+    Normal3f n = Normalize(worldFromObject(Normal3f(0, 0, 1)));
+    return AreaToSolidAngle(1 / Area(), ctx.p, worldFromObject(isect->pObj), n, w);
+}
+
+std::string Disk::ToString() const {
+    char buf[256];
+    std::snprintf(buf, sizeof(buf),
+                  "[ Disk height: %g radius: %g innerRadius: %g phiMax: %g reverseOrientation: "
+                  "%s transformSwapsHandedness: %s ]",
+                  height, radius, innerRadius, Degrees(phiMax),
+                  reverseOrientation ? "true" : "false",
+                  transformSwapsHandedness ? "true" : "false");
+    return buf;
+}
+
+}  // namespace pbrt

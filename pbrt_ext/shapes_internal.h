@@ -1,0 +1,120 @@
+// Helpers shared by the shape families' files (triangles.cpp, quadrics.cpp, bilinearpatches.cpp,
+// shapes.cpp); not part of the shapes' interface.
+#pragma once
+
+#include "pbrt_ext/shapes.h"
+
+#include "pbrt_ext/util/spherequadrature.h"
+
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace pbrt::shapedetail {
+
+// Bound on the relative rounding error of n floating-point operations (pbrt-v4's gamma).
+constexpr Float Gamma(int n) {
+    constexpr Float eps = std::numeric_limits<Float>::epsilon() * Float(0.5);
+    return (n * eps) / (1 - n * eps);
+}
+
+template <typename T>
+T Interpolate(const std::array<Float, 3> &b, const T &a0, const T &a1, const T &a2) {
+    return a0 * b[0] + a1 * b[1] + a2 * b[2];
+}
+
+// Lerp(u, Lerp(v, a00, a01), Lerp(v, a10, a11)): the bilinear patch's own parameterization.
+template <typename T>
+T Bilerp(Point2f uv, const T &a00, const T &a10, const T &a01, const T &a11) {
+    return (a00 * (1 - uv[1]) + a01 * uv[1]) * (1 - uv[0]) +
+           (a10 * (1 - uv[1]) + a11 * uv[1]) * uv[0];
+}
+
+template <typename T>
+T LerpT(Float t, const T &a, const T &b) {
+    return a * (1 - t) + b * t;
+}
+
+inline Float Azimuth(Float x, Float y) {
+    Float phi = std::atan2(y, x);
+    return phi < 0 ? phi + 2 * Pi : phi;
+}
+
+// pbrt-v4's SurfaceInteraction constructor: n from the parametric tangents, negated on request.
+inline SurfaceInteraction MakeInteraction(Point3f p, Point2f uv, Vector3f wo, Vector3f dpdu,
+                                   Vector3f dpdv, bool flipNormal) {
+    SurfaceInteraction si;
+    si.p = p;
+    si.uv = uv;
+    si.wo = wo;
+    si.dpdu = dpdu;
+    si.dpdv = dpdv;
+    si.n = Normal3f(Normalize(Cross(dpdu, dpdv)));
+    if (flipNormal)
+        si.n = -si.n;
+    si.shading.n = si.n;
+    si.shading.dpdu = dpdu;
+    si.shading.dpdv = dpdv;
+    return si;
+}
+
+// pbrt-v4's SetShadingGeometry with an authoritative shading normal: the geometric normal moves
+// to its side. Huge tangents are scaled down so that later products cannot overflow.
+inline void SetShadingGeometry(SurfaceInteraction *si, Normal3f ns, Vector3f dpdus, Vector3f dpdvs) {
+    si->shading.n = ns;
+    si->n = FaceForward(si->n, ns);
+    while (LengthSquared(dpdus) > 1e16f || LengthSquared(dpdvs) > 1e16f) {
+        dpdus /= 1e8f;
+        dpdvs /= 1e8f;
+    }
+    si->shading.dpdu = dpdus;
+    si->shading.dpdv = dpdvs;
+}
+
+// A point sampled on a shape, as ShapeSample carries it.
+inline ShapeSample MakeSample(Point3f p, Normal3f n, Point2f uv, Float pdf) {
+    SurfaceInteraction si;
+    si.p = p;
+    si.n = si.shading.n = n;
+    si.uv = uv;
+    return ShapeSample{si, pdf};
+}
+
+inline Ray SpawnRay(const ShapeSampleContext &ctx, Vector3f w) {
+    return Ray(OffsetRayOrigin(ctx.p, ctx.n, w), w);
+}
+
+// An area density at p (normal n) as a density per solid angle seen from pRef along unit w;
+// 0 where the conversion is singular (grazing, or p at pRef).
+inline Float AreaToSolidAngle(Float pdfArea, Point3f pRef, Point3f p, Normal3f n, Vector3f w) {
+    Float pdf = pdfArea * DistanceSquared(pRef, p) / AbsDot(n, w);
+    return IsFinite(pdf) ? pdf : 0;
+}
+
+// Samples a shape by area and converts the density to solid angle (pbrt-v4's default Sample).
+template <typename S>
+pstd::optional<ShapeSample> SampleBySolidAngle(const S &shape, const ShapeSampleContext &ctx,
+                                               Point2f u) {
+    pstd::optional<ShapeSample> ss = shape.Sample(u);
+    if (!ss)
+        return {};
+    Vector3f wi = ss->intr.p - ctx.p;
+    if (LengthSquared(wi) == 0)
+        return {};
+    ss->pdf = AreaToSolidAngle(ss->pdf, ctx.p, ss->intr.p, ss->intr.n, Normalize(wi));
+    if (ss->pdf == 0)
+        return {};
+    return ss;
+}
+
+// Nodes of the product Gauss-Legendre rule on [0, 1]^2, for areas of curved surfaces.
+template <typename F>
+double IntegrateUnitSquare(F f) {
+    static const std::vector<std::pair<double, double>> rule = GaussLegendre(12);
+    double sum = 0;
+    for (auto [x, wx] : rule)
+        for (auto [y, wy] : rule) sum += wx * wy * f(Float((x + 1) / 2), Float((y + 1) / 2));
+    return sum / 4;
+}
+
+}  // namespace pbrt::shapedetail
