@@ -108,6 +108,8 @@ class Triangle {
                                                           std::array<Float, 3> b, Vector3f wo);
 
   private:
+    pstd::optional<ShapeSample> SampleAt(std::array<Float, 3> b) const;
+
     const TriangleMesh *mesh;
     int triIndex;
 };

@@ -1,10 +1,12 @@
 // Triangles (pbrt-v4's Triangle): watertight intersection, the shading frame from uv and
-// vertex normals, and sampling by area; from a reference point, spherical triangle sampling
-// (Arvo) where the solid angle suits it.
+// vertex normals, and sampling: by area, and from a reference point uniformly in the solid angle
+// the triangle subtends (Arvo), warped toward the receiver's cosine, where the solid angle suits
+// it, as pbrt-v4 samples.
 #include "pbrt_ext/shapes.h"
 #include "pbrt_ext/shapes_internal.h"
 
 #include "pbrt_ext/util/sampling.h"
+#include "pbrt_ext/util/sphericalsampling.h"
 
 #include <cstdio>
 
@@ -82,6 +84,22 @@ pstd::optional<TriangleHit> IntersectTriangle(const Ray &ray, Float tMax, Point3
     if (t <= deltaT)
         return {};
     return TriangleHit{{e0 * invDet, e1 * invDet, e2 * invDet}, t};
+}
+
+// Whether a triangle (or rectangle) subtending this solid angle is sampled uniformly in it, as
+// pbrt-v4 decides: below 3e-4 sr the spherical construction loses precision and area sampling
+// is as good, and near a whole hemisphere it becomes unstable.
+bool SampledBySolidAngle(Float solidAngle) {
+    constexpr Float kMinSphericalSampleArea = 3e-4f, kMaxSphericalSampleArea = 6.22f;
+    return solidAngle >= kMinSphericalSampleArea && solidAngle <= kMaxSphericalSampleArea;
+}
+
+// The bilinear warp that approximates the cosine at the receiver across the triangle's solid
+// angle (pbrt-v4): the corners of the spherical sample's square map to v1, v1, v0, v2. Floored
+// at 0.01 so that no direction the light reaches gets density 0.
+std::array<Float, 4> CosineWarpWeights(const SphericalTriangle &spherical, Normal3f ns) {
+    auto cosine = [&](int i) { return std::max<Float>(0.01f, AbsDot(ns, spherical.VertexDirection(i))); };
+    return {cosine(1), cosine(1), cosine(0), cosine(2)};
 }
 
 // pbrt-v4's default parameterization when a mesh has no uv.
@@ -169,9 +187,13 @@ bool Triangle::IntersectP(const Ray &ray, Float tMax) const {
 }
 
 pstd::optional<ShapeSample> Triangle::Sample(Point2f u) const {
+    return SampleAt(SampleUniformTriangle(u));
+}
+
+// The point at barycentrics b, with the density of area sampling.
+pstd::optional<ShapeSample> Triangle::SampleAt(std::array<Float, 3> b) const {
     const int *v = &mesh->indices[3 * triIndex];
     auto [p0, p1, p2] = Vertices(mesh, triIndex);
-    std::array<Float, 3> b = SampleUniformTriangle(u);
     Normal3f n = Normal3f(Normalize(Cross(p1 - p0, p2 - p0)));
     // Orient n as Intersect does.
     if (!mesh->n.empty())
@@ -184,7 +206,21 @@ pstd::optional<ShapeSample> Triangle::Sample(Point2f u) const {
 }
 
 pstd::optional<ShapeSample> Triangle::Sample(const ShapeSampleContext &ctx, Point2f u) const {
-    return SampleBySolidAngle(*this, ctx, u);
+    SphericalTriangle spherical(Vertices(mesh, triIndex), ctx.p);
+    if (!SampledBySolidAngle(spherical.Area()))
+        return SampleBySolidAngle(*this, ctx, u);
+    Float pdf = 1 / spherical.Area();
+    if (ctx.ns != Normal3f(0, 0, 0)) {
+        std::array<Float, 4> w = CosineWarpWeights(spherical, ctx.ns);
+        u = SampleBilinear(u, w);
+        pdf *= BilinearPDF(u, w);
+    }
+    pstd::optional<std::array<Float, 3>> b = spherical.Sample(u);
+    if (!b || !(pdf > 0))
+        return {};
+    pstd::optional<ShapeSample> ss = SampleAt(*b);
+    ss->pdf = pdf;
+    return ss;
 }
 
 Float Triangle::PDF(const ShapeSampleContext &ctx, Vector3f wi) const {
@@ -193,9 +229,15 @@ Float Triangle::PDF(const ShapeSampleContext &ctx, Vector3f wi) const {
     pstd::optional<TriangleHit> hit = IntersectTriangle(SpawnRay(ctx, w), Infinity, p0, p1, p2);
     if (!hit)
         return 0;
-    Normal3f n(Cross(p1 - p0, p2 - p0));
-    return AreaToSolidAngle(1 / Area(), ctx.p, Interpolate(hit->b, p0, p1, p2),
-                            Normalize(n), w);
+    SphericalTriangle spherical(Vertices(mesh, triIndex), ctx.p);
+    if (!SampledBySolidAngle(spherical.Area())) {
+        Normal3f n(Cross(p1 - p0, p2 - p0));
+        return AreaToSolidAngle(1 / Area(), ctx.p, Interpolate(hit->b, p0, p1, p2), Normalize(n), w);
+    }
+    Float pdf = 1 / spherical.Area();
+    if (ctx.ns != Normal3f(0, 0, 0))
+        pdf *= BilinearPDF(spherical.Invert(w), CosineWarpWeights(spherical, ctx.ns));
+    return pdf;
 }
 
 std::string Triangle::ToString() const {

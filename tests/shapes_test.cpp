@@ -3,6 +3,8 @@
 #include "pbrt_ext/shapes.h"
 
 #include "chi2.h"
+
+#include "pbrt_ext/util/sphericalsampling.h"
 #include "pbrt_ext/util/rng.h"
 
 #include <gtest/gtest.h>
@@ -395,6 +397,7 @@ struct ChiCase {
     const char *name;
     std::function<Shape()> make;
     Point3f ref;
+    Normal3f ns = Normal3f(0, 0, 0);  // the receiver's shading normal: the cosine warp's
 };
 
 TEST(ShapeSampling, ChiSquare) {
@@ -410,13 +413,22 @@ TEST(ShapeSampling, ChiSquare) {
          Point3f(0.1f, 0.2f, -2)},
         {"disk", [] { return Shape(Disk(Transform(), false, 0, 1, 0.3f, 360)); },
          Point3f(0.2f, 0.3f, 0.7f)},
+        // Solid-angle sampling (0.9 sr), then warped toward a receiver's cosine (normals facing
+        // the triangle, tilted, and edge-on to it). Area sampling is the "bilinear patch" case's.
         {"triangle", [&] { return Shape(Triangle(mesh.get(), 0)); }, Point3f(0.2f, 0.3f, 0.5f)},
+        {"triangle, cosine warp", [&] { return Shape(Triangle(mesh.get(), 0)); }, Point3f(0.2f, 0.3f, 0.5f),
+         Normal3f(0, 0, -1)},
+        {"triangle, tilted receiver", [&] { return Shape(Triangle(mesh.get(), 0)); }, Point3f(-0.3f, 0.2f, 0.4f),
+         Normal3f(Normalize(Vector3f(1, 0.5f, -0.3f)))},
+        {"triangle, edge-on receiver", [&] { return Shape(Triangle(mesh.get(), 0)); }, Point3f(0.3f, 0.3f, 0.2f),
+         Normal3f(1, 0, 0)},
+
         {"bilinear patch", [&] { return Shape(BilinearPatch(patch.get(), 0)); },
          Point3f(0.5f, 0.5f, 4)},
     };
     for (const ChiCase &c : cases) {
         Shape shape = c.make();
-        ShapeSampleContext ctx(c.ref, Normal3f(), Normal3f());
+        ShapeSampleContext ctx(c.ref, c.ns, c.ns);
         auto sample = [&](Point2f u, Float) -> pstd::optional<Vector3f> {
             pstd::optional<ShapeSample> ss = shape.Sample(ctx, u);
             if (!ss || ss->pdf == 0)
@@ -430,6 +442,69 @@ TEST(ShapeSampling, ChiSquare) {
         opts.seed = 17;
         Chi2Result r = Chi2TestSampler(sample, pdf, opts);
         EXPECT_TRUE(r.passed) << c.name << "\n" << r.message;
+    }
+}
+
+// The solid angle of the octant's triangle seen from the origin is an eighth of the sphere;
+// each uniform sample of a spherical triangle inverts to the u that made it.
+TEST(SphericalTriangle, AreaAndInverse) {
+    std::array<Point3f, 3> octant = {Point3f(1, 0, 0), Point3f(0, 1, 0), Point3f(0, 0, 1)};
+    EXPECT_NEAR(SphericalTriangle(octant, Point3f(0, 0, 0)).Area(), Pi / 2, 1e-6f);
+    std::array<Point3f, 3> far = {Point3f(0, 0, 0), Point3f(1, 0, 0), Point3f(0, 1, 0)};
+    // Small: far away it is the area over the squared distance.
+    EXPECT_NEAR(SphericalTriangle(far, Point3f(0.3f, 0.3f, 100)).Area(), 0.5f / 1e4f, 1e-8f);
+    RNG rng(5);
+    for (Point3f p : {Point3f(0.2f, 0.3f, 0.5f), Point3f(-2, 1, 0.3f), Point3f(0.3f, 0.3f, 0.01f)})
+        for (int i = 0; i < 2000; ++i) {
+            Point2f u(rng.Uniform<Float>(), rng.Uniform<Float>());
+            SphericalTriangle spherical(far, p);
+            pstd::optional<std::array<Float, 3>> b = spherical.Sample(u);
+            ASSERT_TRUE(b);
+            Point3f q = (*b)[0] * far[0] + (*b)[1] * far[1] + (*b)[2] * far[2];
+            Point2f back = spherical.Invert(Normalize(q - p));
+            EXPECT_NEAR(back.x, u.x, 2e-3f) << "p " << p.x << "," << p.y << "," << p.z;
+            EXPECT_NEAR(back.y, u.y, 2e-3f) << "p " << p.x << "," << p.y << "," << p.z;
+        }
+}
+
+// Uniform in solid angle where the triangle subtends between 3e-4 and 6.22 sr; outside, the
+// area density converted to solid angle, as pbrt-v4 chooses: a triangle 1e-5 sr small (too
+// small for the spherical construction's precision) and one 6.26 sr large (seen from just above
+// it, where the construction is unstable). PDF gives the same density either way.
+TEST(SphericalTriangle, AreaSamplingOutsideItsRange) {
+    auto mesh = OneTriangle();
+    Triangle tri(mesh.get(), 0);
+    struct Case {
+        Point3f p;
+        bool spherical;
+    };
+    for (Case c : {Case{Point3f(0.2f, 0.3f, 0.5f), true}, Case{Point3f(0.2f, 0.3f, 150), false},
+                   Case{Point3f(0.3f, 0.3f, 0.002f), false}}) {
+        ShapeSampleContext ctx(c.p, Normal3f(), Normal3f());
+        Float solidAngle = SphericalTriangle({Point3f(0, 0, 0), Point3f(1, 0, 0), Point3f(0, 1, 0)}, c.p).Area();
+        RNG rng(8);
+        for (int i = 0; i < 200; ++i) {
+            pstd::optional<ShapeSample> ss = tri.Sample(ctx, Point2f(rng.Uniform<Float>(), rng.Uniform<Float>()));
+            ASSERT_TRUE(ss);
+            Vector3f w = ss->intr.p - c.p;
+            Float areaPdf = LengthSquared(w) / (tri.Area() * std::abs(Normalize(w).z));
+            Float expected = c.spherical ? 1 / solidAngle : areaPdf;
+            EXPECT_NEAR(ss->pdf, expected, 1e-3f * expected) << "solid angle " << solidAngle;
+            EXPECT_NEAR(tri.PDF(ctx, Normalize(w)), ss->pdf, 1e-3f * ss->pdf) << "solid angle " << solidAngle;
+        }
+    }
+}
+
+// With a receiver's normal, Sample's density is the one PDF gives for the same direction.
+TEST(SphericalTriangle, WarpedSampleAndPdfAgree) {
+    auto mesh = OneTriangle();
+    Triangle tri(mesh.get(), 0);
+    ShapeSampleContext ctx(Point3f(0.1f, 0.4f, 0.6f), Normal3f(0, 0, -1), Normal3f(Normalize(Vector3f(0.3f, 0, -1))));
+    RNG rng(3);
+    for (int i = 0; i < 2000; ++i) {
+        pstd::optional<ShapeSample> ss = tri.Sample(ctx, Point2f(rng.Uniform<Float>(), rng.Uniform<Float>()));
+        ASSERT_TRUE(ss);
+        EXPECT_NEAR(tri.PDF(ctx, Normalize(ss->intr.p - ctx.p)), ss->pdf, 5e-3f * ss->pdf);
     }
 }
 

@@ -1,0 +1,129 @@
+// Uniform sampling of the solid angle a triangle subtends (pbrt-v4's SampleSphericalTriangle
+// and InvertSphericalTriangleSample, as one class; after Arvo, "Stratified Sampling of Spherical Triangles",
+// SIGGRAPH 1995). The arithmetic is in double: the spherical excess of a small triangle is the
+// difference of nearly equal angles, and sample and inverse must agree to the last float.
+#pragma once
+
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/vecmath.h"
+#include "pbrt_ext/util/pstd.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace pbrt {
+
+namespace spherical {
+
+struct Dir {
+    double x, y, z;
+};
+inline Dir operator+(Dir a, Dir b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Dir operator-(Dir a, Dir b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline Dir operator*(double s, Dir a) { return {s * a.x, s * a.y, s * a.z}; }
+inline double Dot(Dir a, Dir b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Dir Cross(Dir a, Dir b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double Length(Dir a) { return std::sqrt(Dot(a, a)); }
+inline Dir Normalize(Dir a) { return (1 / Length(a)) * a; }
+inline Dir ToDir(Vector3f v) { return {v.x, v.y, v.z}; }
+// v's component orthogonal to unit w, normalized.
+inline Dir Orthogonal(Dir v, Dir w) { return Normalize(v - Dot(v, w) * w); }
+inline double AngleBetween(Dir a, Dir b) { return std::atan2(Length(Cross(a, b)), Dot(a, b)); }
+
+inline Dir ToDir(Point3f p) { return {p.x, p.y, p.z}; }
+
+// The solid angle of the spherical triangle with unit vertices a, b, c (Van Oosterom and
+// Strackee's formula: no cancellation for small triangles).
+inline double TriangleArea(Dir a, Dir b, Dir c) {
+    return std::abs(2 * std::atan2(Dot(a, Cross(b, c)), 1 + Dot(a, b) + Dot(a, c) + Dot(b, c)));
+}
+
+}  // namespace spherical
+
+// Triangle v as seen from p: the unit directions to its vertices and the solid angle they
+// enclose, computed once for the sample, its density and the receiver's cosine warp.
+class SphericalTriangle {
+  public:
+    SphericalTriangle(const std::array<Point3f, 3> &v, Point3f p) : v(v), p(p) {
+        using namespace spherical;
+        for (int i = 0; i < 3; ++i) {
+            d[i] = ToDir(v[i] - p);
+            double length = Length(d[i]);
+            if (length == 0) return;  // p on a vertex: area stays 0
+            d[i] = (1 / length) * d[i];
+        }
+        area = TriangleArea(d[0], d[1], d[2]);
+    }
+
+    // The solid angle, 0 for a degenerate triangle or a p on a vertex.
+    Float Area() const { return Float(area); }
+    // The unit direction from p to vertex i, valid where Area() > 0.
+    Vector3f VertexDirection(int i) const { return Vector3f(Float(d[i].x), Float(d[i].y), Float(d[i].z)); }
+
+    // The barycentrics of the point seen from p in a direction uniform over the solid angle
+    // (density 1 / Area()). u0 picks the sub-triangle (v0, v1, c') of area u0 times the whole,
+    // c' on the arc from v0 to v2; u1 the point on the arc from v1 (u1 = 0) to c' (u1 = 1) by
+    // the cosine of its angle to v1. Empty where Area() is 0.
+    pstd::optional<std::array<Float, 3>> Sample(Point2f u) const {
+        using namespace spherical;
+        Dir a = d[0], b = d[1], c = d[2];
+        Dir nab = Cross(a, b), nac = Cross(a, c);
+        if (!(area > 0) || Length(nab) == 0 || Length(nac) == 0) return {};
+        // The triangle's angle at a, between the planes of its two edges there.
+        double alpha = AngleBetween(nab, nac);
+        // Arvo's closed form for c': the sub-triangle's excess fixes the angle at b, and with
+        // it the cosine q of the arc from a to c'.
+        double s = std::sin(u[0] * area - alpha), t = std::cos(u[0] * area - alpha);
+        double cosAlpha = std::cos(alpha), sinAlpha = std::sin(alpha);
+        double k1 = t - cosAlpha, k2 = s + sinAlpha * Dot(a, b);
+        double q = ((k2 * t - k1 * s) * cosAlpha - k2) / ((k2 * s + k1 * t) * sinAlpha);
+        q = std::clamp(std::isfinite(q) ? q : 1.0, -1.0, 1.0);
+        Dir cPrime = q * a + std::sqrt(std::max(0.0, 1 - q * q)) * Orthogonal(c, a);
+
+        double z = 1 - u[1] * (1 - Dot(cPrime, b));
+        Dir w = z * b + std::sqrt(std::max(0.0, 1 - z * z)) * Orthogonal(cPrime, b);
+        if (!std::isfinite(w.x + w.y + w.z)) w = b;
+
+        // Where the ray p + t w meets the triangle's plane (Cramer's rule on its edges).
+        Dir e1 = ToDir(v[1] - v[0]), e2 = ToDir(v[2] - v[0]), sp = ToDir(p - v[0]);
+        Dir s1 = Cross(w, e2);
+        double divisor = Dot(s1, e1);
+        if (divisor == 0) return {};
+        double b1 = std::clamp(Dot(sp, s1) / divisor, 0.0, 1.0);
+        double b2 = std::clamp(Dot(w, Cross(sp, e1)) / divisor, 0.0, 1.0);
+        if (b1 + b2 > 1) {
+            double sum = b1 + b2;
+            b1 /= sum;
+            b2 /= sum;
+        }
+        return std::array<Float, 3>{Float(1 - b1 - b2), Float(b1), Float(b2)};
+    }
+
+    // The u that Sample maps to direction wi (toward the triangle from p): c' is where the
+    // great circle through v1 and wi crosses the arc from v0 to v2.
+    Point2f Invert(Vector3f wi) const {
+        using namespace spherical;
+        Dir a = d[0], b = d[1], c = d[2], w = Normalize(ToDir(wi));
+        if (!(area > 0)) return {};
+        Dir cPrime = Cross(Cross(b, w), Cross(c, a));
+        if (Length(cPrime) == 0) return {};
+        cPrime = Normalize(cPrime);
+        if (Dot(cPrime, a + c) < 0) cPrime = -1.0 * cPrime;
+        double u0 = TriangleArea(a, b, cPrime) / area;
+        double denominator = 1 - Dot(cPrime, b);
+        double u1 = denominator > 0 ? (1 - Dot(w, b)) / denominator : 0;
+        return Point2f(Float(std::clamp(u0, 0.0, 1.0)), Float(std::clamp(u1, 0.0, 1.0)));
+    }
+
+  private:
+    std::array<Point3f, 3> v;
+    Point3f p;
+    spherical::Dir d[3] = {};
+    double area = 0;
+};
+
+}  // namespace pbrt
