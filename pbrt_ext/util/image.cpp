@@ -4,7 +4,9 @@
 
 #include "pbrt_ext/util/atomicfile.h"
 #include "pbrt_ext/util/imagecodec.h"
+#include "pbrt_ext/util/exrfile.h"
 #include "pbrt_ext/util/imageheaders.h"
+#include "pbrt_ext/util/pngfile.h"
 #include "pbrt_ext/util/resourcelimits.h"
 
 #include <ImfChannelList.h>
@@ -53,21 +55,14 @@ std::array<int, 3> RGBChannelIndices(const ImageFileSpec &spec) {
     return {0, 1, 2};
 }
 
-// What OpenImageIO 2.4's read_image allocates besides our buffer when it converts to float
-// (imageinput.cpp): for a scanline file, whole native scanlines, about 64 MiB of them but at least
-// its "read_chunk" (256) and a multiple of the rows per strip (64 unless a TIFF says), however few
-// the image has; for a tiled file, a row of native tiles. The header decides both: a wide image of
-// four rows made it allocate 3 GiB (found by the image fuzz target, docs/fuzzing.md).
-uint64_t DecoderBufferBytes(const ImageFileSpec &spec) {
-    uint64_t scanline = std::max<uint64_t>(spec.scanlineBytes, 1);
-    if (spec.tileWidth > 0) {
-        uint64_t tilesAcross = (uint64_t(spec.width) + uint64_t(spec.tileWidth) - 1) / uint64_t(spec.tileWidth);
-        return SaturatingProduct({tilesAcross, spec.tileBytes});
+// The reader for the file: libpng and OpenEXR for their formats (by signature, whatever the
+// extension), OpenImageIO's module for the rest.
+std::unique_ptr<ImageFileReader> OpenImageFile(const std::string &path) {
+    switch (ImageFileFormatOf(path)) {
+    case ImageFileFormat::PNG: return OpenPNGFile(path);
+    case ImageFileFormat::EXR: return OpenEXRFile(path);
+    default: return GetImageCodec().Open(path);
     }
-    uint64_t rows = std::max<uint64_t>((uint64_t(1) << 26) / scanline, uint64_t(std::max(spec.readChunk, 1)));
-    if (spec.rowsPerStrip > 0)
-        rows = (rows + uint64_t(spec.rowsPerStrip) - 1) / uint64_t(spec.rowsPerStrip) * uint64_t(spec.rowsPerStrip);
-    return SaturatingProduct({rows, scanline});
 }
 
 }  // namespace
@@ -136,7 +131,7 @@ Image Image::Read(const std::string &path, ColorEncoding encoding) {
     CheckDeclaredSizes(path);  // before a decoder allocates what a corrupt header declares
     std::unique_ptr<ImageFileReader> in;
     try {
-        in = GetImageCodec().Open(path);
+        in = OpenImageFile(path);
     } catch (const std::runtime_error &e) {
         ThrowFileError(path, e.what());
     }
@@ -156,7 +151,7 @@ Image Image::Read(const std::string &path, ColorEncoding encoding) {
                                    uint64_t(spec.nChannels) + NChannels(), sizeof(float)}));
     CheckMemory(FileLoc{path, 0, 0},
                 fmt::format("decoding the {} x {} image", spec.width, spec.height),
-                DecoderBufferBytes(spec));
+                spec.decodeBufferBytes);
 
     std::vector<float> raw(size_t(spec.width) * size_t(spec.height) * size_t(spec.nChannels));
     try {
@@ -244,7 +239,10 @@ void Image::Write8Bit(const std::string &path, const std::string &tmpPath) const
         encoded[i] = uint8_t(std::lround(LinearToSRGB(v) * 255));
     }
     try {
-        GetImageCodec().Write8Bit(path, tmpPath, resolution.x, resolution.y, encoded.data());
+        if (LowercaseExtension(path) == ".png")
+            WritePNG(tmpPath, resolution.x, resolution.y, encoded.data());
+        else
+            GetImageCodec().Write8Bit(path, tmpPath, resolution.x, resolution.y, encoded.data());
     } catch (const std::runtime_error &e) {
         ThrowFileError(path, e.what());
     }

@@ -2,11 +2,13 @@
 // three linear channels in 32-bit float, pbrt-v4's wrap modes and lookups).
 //
 // Values are always linear; encodings apply only at the integer file boundary. Reading goes
-// through OpenImageIO (integer formats such as PNG, JPEG, TGA are decoded with a ColorEncoding,
-// sRGB unless the caller says otherwise; float formats such as EXR, PFM, HDR are taken as
-// linear). Writing EXR goes through OpenEXR (32-bit float RGB with the metadata as header
-// attributes); any other extension goes through OpenImageIO as 8-bit sRGB. OpenImageIO is a
-// module loaded on first use (util/imagecodec.h). Files are written atomically (util/atomicfile.h): a failed or interrupted write never
+// through libpng for PNG, OpenEXR for EXR (by the file's signature) and OpenImageIO for the rest
+// (integer formats such as PNG, JPEG, TGA are decoded with a ColorEncoding, sRGB unless the
+// caller says otherwise; float formats such as EXR, PFM, HDR are taken as linear; color is never
+// premultiplied by alpha, as pbrt-v4 reads it). Writing EXR goes through OpenEXR (32-bit float
+// RGB with the metadata as header attributes), PNG through libpng as 8-bit sRGB, any other
+// extension through OpenImageIO as 8-bit sRGB. OpenImageIO is a module loaded on first use
+// (util/imagecodec.h). Files are written atomically (util/atomicfile.h): a failed or interrupted write never
 // leaves a partial file. File errors throw std::runtime_error("<path>: error: <what>").
 //
 // This is a host type (the pixels live in a std::vector), like pbrt-v4's Image outside its GPU

@@ -1,38 +1,20 @@
-// The image formats OpenImageIO reads and writes, behind an interface whose implementation
-// (util/imagecodec_oiio.cpp) is a module loaded on first use.
+// The image formats other than PNG and EXR, which OpenImageIO reads and writes, behind an
+// interface whose implementation (util/imagecodec_oiio.cpp) is a module loaded on first use.
 //
 // Why a module: linking OpenImageIO brings some 260 shared libraries whose loading and static
 // initializers cost every process about 0.5 s and 120 MB before main() runs, although most
-// renders read no image and write EXR, which OpenEXR does directly (util/image.cpp). Loaded
-// with dlopen, only a process that touches such a file pays for it.
+// renders read and write only PNG and EXR files, which libpng and OpenEXR handle directly
+// (util/pngfile.h, util/exrfile.h). Loaded with dlopen, only a process that touches another
+// format pays for it.
 #pragma once
+
+#include "pbrt_ext/util/imagefile.h"
 
 #include <cstdint>
 #include <memory>
 #include <string>
-#include <vector>
 
 namespace pbrt {
-
-// What a file's header says, as OpenImageIO reports it: the pixels, and the numbers that size
-// its decoder's own buffers (util/image.cpp checks them against the memory budget).
-struct ImageFileSpec {
-    int width = 0, height = 0, depth = 0, nChannels = 0;
-    bool isFloat = false;  // float, half or double samples: linear, whatever the caller's encoding
-    std::vector<std::string> channelNames;
-    uint64_t scanlineBytes = 0, tileBytes = 0;
-    int tileWidth = 0;     // 0 for a scanline file
-    int readChunk = 256;   // OpenImageIO's "read_chunk" attribute
-    int rowsPerStrip = 64; // a TIFF's, or OpenImageIO's default
-};
-
-class ImageFileReader {
-  public:
-    virtual ~ImageFileReader() = default;
-    virtual const ImageFileSpec &Spec() const = 0;
-    // Every channel of every pixel as float, row-major. Throws std::runtime_error(<reason>).
-    virtual void ReadPixels(float *pixels) = 0;
-};
 
 class ImageCodec {
   public:

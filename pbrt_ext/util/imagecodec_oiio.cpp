@@ -4,10 +4,36 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 
 namespace pbrt {
 namespace {
+
+uint64_t SaturatingMultiply(uint64_t a, uint64_t b) {
+    uint64_t product;
+    return __builtin_mul_overflow(a, b, &product) ? UINT64_MAX : product;
+}
+
+// What OpenImageIO 2.4's read_image allocates besides the caller's buffer when it converts to
+// float (imageinput.cpp): for a scanline file, whole native scanlines, about 64 MiB of them but at
+// least its "read_chunk" (256) and a multiple of the rows per strip (64 unless a TIFF says),
+// however few the image has; for a tiled file, a row of native tiles. The header decides both: a
+// wide image of four rows made it allocate 3 GiB (found by the image fuzz target, docs/fuzzing.md).
+uint64_t DecoderBufferBytes(const OIIO::ImageSpec &spec) {
+    uint64_t scanline = std::max<uint64_t>(spec.scanline_bytes(true), 1);
+    if (spec.tile_width > 0) {
+        uint64_t tilesAcross = (uint64_t(spec.width) + uint64_t(spec.tile_width) - 1) / uint64_t(spec.tile_width);
+        return SaturatingMultiply(tilesAcross, spec.tile_bytes(true));
+    }
+    int readChunk = 256;
+    OIIO::getattribute("read_chunk", readChunk);
+    uint64_t rows = std::max<uint64_t>((uint64_t(1) << 26) / scanline, uint64_t(std::max(readChunk, 1)));
+    uint64_t rowsPerStrip = uint64_t(std::max(spec.get_int_attribute("tiff:RowsPerStrip", 64), 1));
+    rows = (rows + rowsPerStrip - 1) / rowsPerStrip * rowsPerStrip;
+    return SaturatingMultiply(rows, scanline);
+}
 
 class OIIOReader : public ImageFileReader {
   public:
@@ -21,11 +47,7 @@ class OIIOReader : public ImageFileReader {
                        s.format.basetype == OIIO::TypeDesc::HALF ||
                        s.format.basetype == OIIO::TypeDesc::DOUBLE;
         spec.channelNames = s.channelnames;
-        spec.scanlineBytes = s.scanline_bytes(true);
-        spec.tileWidth = s.tile_width;
-        spec.tileBytes = s.tile_width > 0 ? s.tile_bytes(true) : 0;
-        OIIO::getattribute("read_chunk", spec.readChunk);
-        spec.rowsPerStrip = s.get_int_attribute("tiff:RowsPerStrip", 64);
+        spec.decodeBufferBytes = DecoderBufferBytes(s);
     }
     const ImageFileSpec &Spec() const override { return spec; }
     void ReadPixels(float *pixels) override {

@@ -112,18 +112,29 @@ void CheckPng(FileReader &file, const std::string &path) {
 
 }  // namespace
 
-void CheckDeclaredSizes(const std::string &path) {
+ImageFileFormat ImageFileFormatOf(const std::string &path) {
     FileReader file(path);
     auto magic = file.Bytes<4>();
     if (!file.Ok())
-        return;
-    if (LittleEndian(magic) == kExrMagic) {
-        CheckExr(file, path);
-        return;
-    }
+        return ImageFileFormat::Other;
+    if (LittleEndian(magic) == kExrMagic)
+        return ImageFileFormat::EXR;
     auto rest = file.Bytes<4>();
     if (file.Ok() && std::equal(magic.begin(), magic.end(), kPngSignature.begin()) &&
         std::equal(rest.begin(), rest.end(), kPngSignature.begin() + 4))
+        return ImageFileFormat::PNG;
+    return ImageFileFormat::Other;
+}
+
+void CheckDeclaredSizes(const std::string &path) {
+    ImageFileFormat format = ImageFileFormatOf(path);
+    if (format == ImageFileFormat::Other)
+        return;
+    FileReader file(path);
+    file.Skip(format == ImageFileFormat::EXR ? 4 : 8);
+    if (format == ImageFileFormat::EXR)
+        CheckExr(file, path);
+    else
         CheckPng(file, path);
 }
 

@@ -1,4 +1,5 @@
-// A check of an image file's declared sizes before a decoder believes them (host only).
+// A check of an image file's declared sizes before a decoder believes them, and its format by
+// signature (host only).
 //
 // Some decoders allocate a header field at the size the file declares before reading it: a 28-byte
 // OpenEXR file declaring a 2 GiB string attribute makes OpenEXR 3.1 allocate and zero 2 GiB, for
@@ -16,5 +17,10 @@ namespace pbrt {
 // attributes or chunks declares more bytes than the file has left. Anything else, malformed or
 // not, is left to the decoders.
 void CheckDeclaredSizes(const std::string &path);
+
+// The format a file's signature names (its first 8 bytes), whatever its extension; Other for
+// anything else, including an unreadable file.
+enum class ImageFileFormat { PNG, EXR, Other };
+ImageFileFormat ImageFileFormatOf(const std::string &path);
 
 }  // namespace pbrt

@@ -27,8 +27,9 @@ project_packages=(
   build-essential cmake ninja-build
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-matplotlib
-  # the renderer: ray tracing, images, threads, command line, scene data, formatting,
+  # the renderer: ray tracing, images (PNG, EXR; OpenImageIO for the rest), threads, command line,
+  # scene data, formatting,
   # Sobol' direction numbers (Boost.Random's table, header-only)
   libembree-dev libopenexr-dev libopenimageio-dev openimageio-tools libtbb-dev
-  libcli11-dev nlohmann-json3-dev libfmt-dev libboost-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev libboost-dev libpng-dev
 )

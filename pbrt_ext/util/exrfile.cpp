@@ -1,0 +1,97 @@
+#include "pbrt_ext/util/exrfile.h"
+
+#include <ImfChannelList.h>
+#include <ImfCompression.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfTileDescription.h>
+
+#include <cstdint>
+#include <stdexcept>
+
+namespace pbrt {
+
+namespace {
+
+uint64_t SaturatingMultiply(uint64_t a, uint64_t b) {
+    uint64_t product;
+    return __builtin_mul_overflow(a, b, &product) ? UINT64_MAX : product;
+}
+
+// The scanlines a chunk holds, per compression (the OpenEXR file layout's table).
+int ScanlinesPerBlock(Imf::Compression compression) {
+    switch (compression) {
+    case Imf::NO_COMPRESSION:
+    case Imf::RLE_COMPRESSION:
+    case Imf::ZIPS_COMPRESSION: return 1;
+    case Imf::ZIP_COMPRESSION:
+    case Imf::PXR24_COMPRESSION: return 16;
+    case Imf::PIZ_COMPRESSION:
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION:
+    case Imf::DWAA_COMPRESSION: return 32;
+    default: return 256;  // DWAB, and any later one
+    }
+}
+
+class EXRReader : public ImageFileReader {
+  public:
+    explicit EXRReader(const std::string &path) try : file(path.c_str()) {
+        const Imf::Header &header = file.header();
+        dataWindow = header.dataWindow();
+        int64_t width = int64_t(dataWindow.max.x) - dataWindow.min.x + 1;
+        int64_t height = int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
+        if (width <= 0 || height <= 0 || width > INT32_MAX || height > INT32_MAX)
+            throw std::runtime_error("the data window is empty or too large");
+        spec.width = int(width);
+        spec.height = int(height);
+        spec.isFloat = true;
+        for (Imf::ChannelList::ConstIterator c = header.channels().begin(); c != header.channels().end(); ++c) {
+            spec.channelNames.push_back(c.name());
+            spec.isFloat = spec.isFloat && c.channel().type != Imf::UINT;
+        }
+        spec.nChannels = int(spec.channelNames.size());
+        // OpenEXR decodes a block of scanlines at a time, compressed and uncompressed (a row of
+        // tiles for a tiled file), however few rows the image has: a header 2 million pixels
+        // wide declares gigabytes of it (found by the image fuzz target, docs/fuzzing.md).
+        uint64_t rowsAtOnce = header.hasTileDescription() ? uint64_t(header.tileDescription().ySize)
+                                                          : uint64_t(ScanlinesPerBlock(header.compression()));
+        spec.decodeBufferBytes = SaturatingMultiply(SaturatingMultiply(2 * rowsAtOnce, uint64_t(width)),
+                                                    uint64_t(spec.nChannels) * sizeof(float));
+    } catch (const std::exception &e) {
+        throw std::runtime_error(std::string("cannot read the image: OpenEXR: ") + e.what());
+    }
+
+    const ImageFileSpec &Spec() const override { return spec; }
+
+    void ReadPixels(float *pixels) override {
+        // OpenEXR addresses the buffer by absolute data-window coordinates.
+        size_t xStride = size_t(spec.nChannels) * sizeof(float), yStride = xStride * size_t(spec.width);
+        char *base = reinterpret_cast<char *>(pixels) - ptrdiff_t(dataWindow.min.x) * ptrdiff_t(xStride) -
+                     ptrdiff_t(dataWindow.min.y) * ptrdiff_t(yStride);
+        Imf::FrameBuffer frameBuffer;
+        for (int c = 0; c < spec.nChannels; ++c)
+            frameBuffer.insert(spec.channelNames[size_t(c)],
+                               Imf::Slice(Imf::FLOAT, base + size_t(c) * sizeof(float), xStride, yStride));
+        try {
+            file.setFrameBuffer(frameBuffer);
+            file.readPixels(dataWindow.min.y, dataWindow.max.y);
+        } catch (const std::exception &e) {
+            throw std::runtime_error(std::string("cannot decode the pixels: OpenEXR: ") + e.what());
+        }
+    }
+
+  private:
+    Imf::InputFile file;
+    Imath::Box2i dataWindow;
+    ImageFileSpec spec;
+};
+
+}  // namespace
+
+std::unique_ptr<ImageFileReader> OpenEXRFile(const std::string &path) {
+    return std::make_unique<EXRReader>(path);
+}
+
+}  // namespace pbrt

@@ -1,0 +1,29 @@
+// An image file being read: what its header says, then its pixels. Implemented over libpng
+// (util/pngfile.h), OpenEXR (util/exrfile.h) and OpenImageIO (util/imagecodec.h); util/image.cpp
+// picks by the file's signature and decides what the header allows before any pixel is decoded.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pbrt {
+
+struct ImageFileSpec {
+    int width = 0, height = 0, depth = 1, nChannels = 0;
+    bool isFloat = false;  // float, half or double samples: linear, whatever the caller's encoding
+    std::vector<std::string> channelNames;
+    // What the decoder allocates besides the float pixels it returns, from the header alone.
+    uint64_t decodeBufferBytes = 0;
+};
+
+class ImageFileReader {
+  public:
+    virtual ~ImageFileReader() = default;
+    virtual const ImageFileSpec &Spec() const = 0;
+    // Every channel of every pixel as float, row-major (integer formats scaled to [0, 1], still
+    // in the file's encoding). Throws std::runtime_error(<reason>).
+    virtual void ReadPixels(float *pixels) = 0;
+};
+
+}  // namespace pbrt
