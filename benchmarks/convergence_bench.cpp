@@ -1,9 +1,13 @@
-// The noise-to-time study (issue 5): how fast each fabric sampler and each path strategy removes
-// noise from the scenes of scenes/convergence/ (the paper's Fig. 3 cylinder at three roughnesses
-// and a Cornell box with fabric boxes).
+// The noise-to-time study (issues 5 and 11): how fast each fabric sampler, path strategy, light
+// sampler and sample generator removes noise from the scenes of scenes/convergence/ (the paper's
+// Fig. 3 cylinder at three roughnesses under a sky and a small light, and at roughness 0.1 under
+// the sky alone; a Cornell box with fabric boxes; a scene after Veach's MIS figure).
 //
-// Each benchmark, named Convergence/<scene>/<fabric sampler>/<strategy>/spp:<n>, renders the scene
-// once at n spp and compares it with the scene's reference image, recording the counters
+// Each benchmark renders a scene once at n spp and compares it with the scene's reference image:
+//   Convergence/<scene>/<fabric sampler>/<strategy>/spp:<n>   every fabric sampler and strategy,
+//   LightSampler/<scene>/<bvh|power|uniform>/mis/spp:<n>      the light samplers (best, MIS),
+//   Sampler/<scene>/<sampler>/mis/spp:<n>                     the sample generators (best, MIS),
+// recording the counters
 //   seconds     the render's own time (scene loading excluded),
 //   relMSE      mean over pixels and channels of (x - r)^2 / (r^2 + 1e-2),
 //   efficiency  1 / (relMSE * seconds), the higher the better,
@@ -38,8 +42,13 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char *kScenes[] = {"cylinder_r0.1", "cylinder_r0.3", "cylinder_r0.6",
-                                   "cornell_fabric"};
+                                   "cylinder_env_r0.1", "cornell_fabric"};
 constexpr const char *kFabricSamplers[] = {"uniform", "cosine", "paper", "best"};
+// The scenes with several lights, and the scenes for the sample generators.
+constexpr const char *kLightSamplerScenes[] = {"veach_mis", "cylinder_r0.1"};
+constexpr const char *kLightSamplers[] = {"bvh", "power", "uniform"};
+constexpr const char *kSamplerScenes[] = {"veach_mis", "cylinder_env_r0.1"};
+constexpr const char *kSamplers[] = {"independent", "stratified", "halton", "sobol", "paddedsobol", "zsobol"};
 constexpr const char *kStrategies[] = {"bsdf", "light", "mis"};
 constexpr int kSweepSpp[] = {4, 16, 64, 256};
 // Its own noise adds about 1/16 of the best sweep image's error at 256 spp; the plot script
@@ -115,14 +124,10 @@ double RelMSE(const Image &image, const Image &reference) {
     return sum / (double(res.x) * res.y * Image::NChannels());
 }
 
-void Convergence(benchmark::State &state, const std::string &scene, const std::string &sampler,
-                 const std::string &strategy, int spp) {
+// Renders the scene with these overrides (spp among them) and compares it with the reference.
+void Convergence(benchmark::State &state, const std::string &scene, RenderOverrides overrides) {
     try {
         const Image &reference = Reference(scene);
-        RenderOverrides overrides;
-        overrides.spp = spp;
-        overrides.fabricSampler = ParseFabricSampling(sampler);
-        overrides.strategy = ParsePathStrategy(strategy);
         std::unique_ptr<Scene> rendered = LoadQuietly(scene, overrides);
         RenderStatistics stats;
         for (auto _ : state)
@@ -131,10 +136,24 @@ void Convergence(benchmark::State &state, const std::string &scene, const std::s
         state.counters["seconds"] = stats.seconds;
         state.counters["relMSE"] = relMSE;
         state.counters["efficiency"] = 1 / (relMSE * stats.seconds);
-        state.counters["spp"] = spp;
+        state.counters["spp"] = *overrides.spp;
         state.counters["reference_spp"] = kReferenceSpp;
     } catch (const std::exception &e) {
         state.SkipWithError(e.what());
+    }
+}
+
+// <study>/<scene>/<choice>/<strategy>/spp:<n> for every sweep count.
+void RegisterSweep(const std::string &study, const std::string &scene, const std::string &choice,
+                   const std::string &strategy, RenderOverrides overrides) {
+    overrides.strategy = ParsePathStrategy(strategy);
+    for (int spp : kSweepSpp) {
+        overrides.spp = spp;
+        std::string name = study + "/" + scene + "/" + choice + "/" + strategy + "/spp:" + std::to_string(spp);
+        benchmark::RegisterBenchmark(name.c_str(), Convergence, scene, overrides)
+            ->Iterations(1)
+            ->UseRealTime()
+            ->Unit(benchmark::kSecond);
     }
 }
 
@@ -142,16 +161,25 @@ void Convergence(benchmark::State &state, const std::string &scene, const std::s
 bool RegisterConvergence() {
     for (const char *scene : kScenes)
         for (const char *sampler : kFabricSamplers)
-            for (const char *strategy : kStrategies)
-                for (int spp : kSweepSpp) {
-                    std::string name = std::string("Convergence/") + scene + "/" + sampler + "/" +
-                                       strategy + "/spp:" + std::to_string(spp);
-                    benchmark::RegisterBenchmark(name.c_str(), Convergence, std::string(scene),
-                                                 std::string(sampler), std::string(strategy), spp)
-                        ->Iterations(1)
-                        ->UseRealTime()
-                        ->Unit(benchmark::kSecond);
-                }
+            for (const char *strategy : kStrategies) {
+                RenderOverrides overrides;
+                overrides.fabricSampler = ParseFabricSampling(sampler);
+                RegisterSweep("Convergence", scene, sampler, strategy, overrides);
+            }
+    for (const char *scene : kLightSamplerScenes)
+        for (const char *lightSampler : kLightSamplers) {
+            RenderOverrides overrides;
+            overrides.fabricSampler = FabricSampling::Best;
+            overrides.lightSampler = lightSampler;
+            RegisterSweep("LightSampler", scene, lightSampler, "mis", overrides);
+        }
+    for (const char *scene : kSamplerScenes)
+        for (const char *sampler : kSamplers) {
+            RenderOverrides overrides;
+            overrides.fabricSampler = FabricSampling::Best;
+            overrides.sampler = sampler;
+            RegisterSweep("Sampler", scene, sampler, "mis", overrides);
+        }
     return true;
 }
 

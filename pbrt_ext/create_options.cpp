@@ -133,11 +133,14 @@ auto WithPixelBoundsLoc(const SceneEntity &e, const RenderOverrides &overrides, 
 
 // The "randomization" of a low-discrepancy sampler, with pbrt-v4's defaults: permuted digits
 // for Halton, whose prime bases have no fast Owen scramble, fast Owen for the Sobol' samplers.
-RandomizeStrategy SamplerRandomization(const SceneEntity &e) {
+// The "randomization" of a low-discrepancy sampler, with pbrt-v4's defaults: permuted digits
+// for Halton, whose prime bases have no fast Owen scramble, fast Owen for the Sobol' samplers.
+// A sampler named on the command line takes its default: the scene's was written for another.
+RandomizeStrategy SamplerRandomization(const SceneEntity &e, const std::string &sampler, bool overridden) {
     const ParameterDictionary &p = e.parameters;
-    bool halton = e.name == "halton";
-    std::string sampler = e.name.empty() ? "zsobol" : e.name;
-    std::string name = p.GetOneString("randomization", halton ? "permutedigits" : "fastowen");
+    bool halton = sampler == "halton";
+    std::string fallback = halton ? "permutedigits" : "fastowen";
+    std::string name = overridden ? fallback : p.GetOneString("randomization", fallback);
     if (name == "none") return RandomizeStrategy::None;
     if (name == "permutedigits") return RandomizeStrategy::PermuteDigits;
     if (name == "owen") return RandomizeStrategy::Owen;
@@ -266,46 +269,53 @@ Sampler CreateSampler(const SceneEntity &e, Point2i fullResolution,
                       const RenderOverrides &overrides) {
     const ParameterDictionary &p = e.parameters;
     int seed = p.GetOneInt("seed", overrides.seed);
-    if (e.name == "independent") {
-        int spp = overrides.spp.value_or(p.GetOneInt("pixelsamples", 16));
-        p.ReportUnused();
-        return MakeSampler(e, overrides, {"pixelsamples"},
-                           [&] { return IndependentSampler(spp, seed); });
+    // --sampler replaces the scene's sampler; of the scene's parameters only the count carries
+    // over, and the others are not reported unused.
+    bool overridden = overrides.sampler.has_value();
+    std::string name = overridden ? *overrides.sampler : e.name.empty() ? "zsobol" : e.name;
+    int spp = overrides.spp.value_or(p.GetOneInt("pixelsamples", 16));
+    auto reportUnused = [&] {
+        if (!overridden) p.ReportUnused();
+    };
+    if (name == "independent") {
+        reportUnused();
+        return MakeSampler(e, overrides, {"pixelsamples"}, [&] { return IndependentSampler(spp, seed); });
     }
-    if (e.name == "stratified") {
+    if (name == "stratified") {
         int xs = p.GetOneInt("xsamples", 4), ys = p.GetOneInt("ysamples", 4);
         bool jitter = p.GetOneBool("jitter", true);
-        if (overrides.spp) {
+        if (overrides.spp || overridden) {
             // pbrt-v4: the most square factorization of the requested count.
-            int n = *overrides.spp, div = int(std::sqrt(double(n)));
-            while (n % div)
+            int div = std::max(int(std::sqrt(double(spp))), 1);
+            while (spp % div)
                 --div;
-            ys = n / div;
-            xs = n / ys;
+            ys = spp / div;
+            xs = spp / ys;
         }
-        p.ReportUnused();
+        reportUnused();
         return MakeSampler(e, overrides, {"xsamples", "ysamples"},
                            [&] { return StratifiedSampler(xs, ys, jitter, seed); });
     }
-    bool lowDiscrepancy = e.name.empty() || e.name == "zsobol" || e.name == "halton" ||
-                          e.name == "sobol" || e.name == "paddedsobol";
-    if (!lowDiscrepancy) {
-        if (e.name != "pmj02bn")
-            throw ParseError(e.loc, "unknown Sampler \"" + e.name + "\": expected zsobol, "
-                                    "halton, sobol, paddedsobol, pmj02bn, stratified or "
-                                    "independent");
+    if (std::optional<std::string> error = SamplerNameError(name))
+        throw ParseError(e.loc, *error);
+    if (name == "pmj02bn")
         Substitute(e, "Sampler", "\"zsobol\" (same sample count; a low-discrepancy sampler)");
-    }
-    int spp = overrides.spp.value_or(p.GetOneInt("pixelsamples", 16));
-    RandomizeStrategy randomize = SamplerRandomization(e);
-    if (lowDiscrepancy)
-        p.ReportUnused();
+    RandomizeStrategy randomize = SamplerRandomization(e, name, overridden);
+    if (name != "pmj02bn")
+        reportUnused();
     return MakeSampler(e, overrides, {"pixelsamples"}, [&]() -> Sampler {
-        if (e.name == "halton") return HaltonSampler(spp, fullResolution, randomize, seed);
-        if (e.name == "sobol") return SobolSampler(spp, fullResolution, randomize, seed);
-        if (e.name == "paddedsobol") return PaddedSobolSampler(spp, randomize, seed);
+        if (name == "halton") return HaltonSampler(spp, fullResolution, randomize, seed);
+        if (name == "sobol") return SobolSampler(spp, fullResolution, randomize, seed);
+        if (name == "paddedsobol") return PaddedSobolSampler(spp, randomize, seed);
         return ZSobolSampler(spp, fullResolution, randomize, seed);
     });
+}
+
+std::optional<std::string> SamplerNameError(const std::string &name) {
+    for (const char *known : {"zsobol", "halton", "sobol", "paddedsobol", "pmj02bn", "stratified", "independent"})
+        if (name == known) return {};
+    return "unknown Sampler \"" + name + "\": expected zsobol, halton, sobol, paddedsobol, pmj02bn, "
+           "stratified or independent";
 }
 
 PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrides &overrides,

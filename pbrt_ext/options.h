@@ -22,10 +22,14 @@ struct RenderOverrides {
     std::optional<PathStrategy> strategy;    // instead of the integrator's "mis"
     std::optional<FabricSampling> fabricSampler;  // for every fabric material
     std::optional<std::string> lightSampler;  // "bvh", "power" or "uniform", instead of the integrator's
+    std::optional<std::string> sampler;      // a Sampler name (SamplerNameError), instead of the scene's
     double timeLimitSeconds = 0;             // 0: none
 };
 
 // "uniform", "cosine", "paper", "truncatedsinphi" or "best"; throws std::invalid_argument otherwise.
 FabricSampling ParseFabricSampling(const std::string &name);
+
+// Empty for a Sampler name pbrt_ext knows; otherwise the message naming the ones it does.
+std::optional<std::string> SamplerNameError(const std::string &name);
 
 }  // namespace pbrt

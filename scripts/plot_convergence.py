@@ -9,8 +9,10 @@ Writes into FOLDER (default: the JSON's folder)
                               per fabric sampler x path strategy;
   convergence_efficiency.png  efficiency ratios: each fabric sampler against uniform (under MIS),
                               MIS against BSDF-only and light-only (with the best sampler);
-and prints Markdown tables: the spp each fabric sampler needs for the relMSE of "best", and MIS's
-efficiency relative to BSDF-only and light-only.
+and prints Markdown tables: the spp each fabric sampler needs for the relMSE of "best", MIS's
+efficiency relative to BSDF-only and light-only, and for the light samplers and the sample
+generators (LightSampler/ and Sampler/ benchmarks) relMSE per spp and efficiency relative to
+"bvh" and to "independent".
 
 The model: an unbiased estimator with independent samples has relMSE = c / spp, so the spp for
 equal error is proportional to c, and efficiency 1 / (relMSE * seconds) = 1 / (c * seconds per
@@ -169,6 +171,43 @@ def print_tables(fits):
             print(f"| {scene} | {s} | " + " | ".join(cell(r, ".3g") for r in ratios) + " |")
 
 
+CHOICE_BASELINES = {"LightSampler": "bvh", "Sampler": "independent"}
+
+
+def load_choices(path):
+    """{study: {scene: {choice: [(spp, seconds, relMSE)]}}} for the LightSampler/Sampler studies."""
+    with open(path) as f:
+        benchmarks = json.load(f)["benchmarks"]
+    studies = defaultdict(lambda: defaultdict(lambda: defaultdict(list)))
+    for b in benchmarks:
+        parts = b["name"].split("/")
+        if b.get("error_occurred") or parts[0] not in CHOICE_BASELINES:
+            continue
+        studies[parts[0]][parts[1]][parts[2]].append((int(b["spp"]), b["seconds"], b["relMSE"]))
+    return studies
+
+
+def print_choice_tables(studies):
+    """relMSE at each sweep count, and efficiency (1 / (relMSE x seconds)) over the baseline's at
+    the same count: low-discrepancy samplers converge faster than 1 / spp, so no single c fits."""
+    for study, scenes in studies.items():
+        baseline = CHOICE_BASELINES[study]
+        counts = sorted({spp for by_choice in scenes.values() for pts in by_choice.values()
+                         for spp, _, _ in pts})
+        print(f"\n{study}: relMSE per spp, and efficiency relative to {baseline} at that spp\n")
+        print("| scene | choice | " + " | ".join(f"relMSE {n}" for n in counts) + " | "
+              + " | ".join(f"eff. {n}" for n in counts) + " |")
+        print("|---|---|" + "---|" * (2 * len(counts)))
+        for scene, by_choice in sorted(scenes.items()):
+            base = {spp: 1 / (rel * sec) for spp, sec, rel in by_choice.get(baseline, [])}
+            for choice, pts in by_choice.items():
+                pts = dict((spp, (sec, rel)) for spp, sec, rel in pts)
+                rel = [cell(pts[n][1] if n in pts else float("nan"), ".3g") for n in counts]
+                eff = [cell(1 / (pts[n][1] * pts[n][0]) / base[n] if n in pts and n in base
+                            else float("nan"), ".2f") for n in counts]
+                print(f"| {scene} | {choice} | " + " | ".join(rel) + " | " + " | ".join(eff) + " |")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("json", help="convergence_bench's --benchmark_out file")
@@ -176,12 +215,15 @@ def main():
     args = parser.parse_args()
     out = args.out or os.path.dirname(os.path.abspath(args.json))
     series, reference_spp = load(args.json)
-    if not series:
-        parser.error(f"{args.json}: no Convergence benchmarks without errors")
-    fits = fit(series, reference_spp)
-    plot_relmse(series, os.path.join(out, "convergence_relmse.png"))
-    plot_efficiency(fits, os.path.join(out, "convergence_efficiency.png"))
-    print_tables(fits)
+    studies = load_choices(args.json)
+    if not series and not studies:
+        parser.error(f"{args.json}: no convergence benchmarks without errors")
+    if series:
+        fits = fit(series, reference_spp)
+        plot_relmse(series, os.path.join(out, "convergence_relmse.png"))
+        plot_efficiency(fits, os.path.join(out, "convergence_efficiency.png"))
+        print_tables(fits)
+    print_choice_tables(studies)
 
 
 if __name__ == "__main__":

@@ -123,6 +123,28 @@ Shape "sphere"
     EXPECT_NE(bsdf.find("sampling: paper"), std::string::npos) << bsdf;
 }
 
+// --sampler replaces the scene's Sampler, keeping its count; the scene's other parameters, written
+// for its own sampler, are neither applied nor reported unused.
+TEST(SceneLoader, CommandLineSamplerOverridesTheFile) {
+    std::string file = WriteScene("sampler.pbrt", R"(Sampler "halton" "integer pixelsamples" 9
+    "string randomization" "owen"
+LookAt 0 0 5  0 0 0  0 1 0
+Camera "perspective"
+Film "rgb" "integer xresolution" 8 "integer yresolution" 8
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+)");
+    RenderOverrides overrides;
+    overrides.quiet = true;
+    EXPECT_STREQ(LoadScene(file, overrides)->sampler.Name(), "halton");
+    for (const char *name : {"independent", "stratified", "sobol", "paddedsobol", "zsobol"}) {
+        overrides.sampler = name;
+        std::unique_ptr<Scene> scene = LoadScene(file, overrides);
+        EXPECT_STREQ(scene->sampler.Name(), name);
+        EXPECT_EQ(scene->sampler.SamplesPerPixel(), std::string(name) == "zsobol" ? 16 : 9) << name;
+    }
+}
+
 TEST(SceneLoader, CommandLineFabricSamplerOverridesTheFile) {
     std::string file = WriteScene("fabric2.pbrt", std::string(kHeader) + R"(
 Material "fabric" "string sampler" "paper"

@@ -61,6 +61,10 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
                    "bvh, power or uniform: how next-event estimation picks a light (default: "
                    "the integrator's \"lightsampler\", bvh unless it says)")
         ->check([](const std::string &name) { return LightSamplerNameError(name).value_or(""); });
+    app.add_option("--sampler", o.sampler,
+                   "zsobol, halton, sobol, paddedsobol, stratified or independent: the sample "
+                   "generator, with its default randomization (default: the scene's Sampler)")
+        ->check([](const std::string &name) { return SamplerNameError(name).value_or(""); });
     app.add_option("--time-limit", o.timeLimitSeconds,
                    "stop after this many seconds with every pixel at the same sample count "
                    "(default: 0, no limit)");
