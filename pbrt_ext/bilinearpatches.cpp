@@ -1,9 +1,12 @@
 // Bilinear patches (pbrt-v4's BilinearPatch): the ray/patch intersection, the shading frame,
-// areas by quadrature, and sampling by area through the bilinear warp of the area element.
+// areas by quadrature, and sampling: by area through the bilinear warp of the area element, and
+// from a reference point, for rectangles, uniformly in their solid angle (Urena et al.) warped
+// toward the receiver's cosine, as pbrt-v4 samples.
 #include "pbrt_ext/shapes.h"
 #include "pbrt_ext/shapes_internal.h"
 
 #include "pbrt_ext/util/sampling.h"
+#include "pbrt_ext/util/sphericalsampling.h"
 #include "pbrt_ext/util/spherequadrature.h"
 
 #include <cstdio>
@@ -207,9 +210,14 @@ Float BilinearPatch::AreaPDF(Point2f uv) const {
 }
 
 pstd::optional<ShapeSample> BilinearPatch::Sample(Point2f u) const {
+    auto [p00, p10, p01, p11] = Corners();
+    return SampleAt(isRectangle ? u : SampleBilinear(u, AreaWeights(p00, p10, p01, p11)));
+}
+
+// The point at patch parameters uv, with the density of area sampling.
+pstd::optional<ShapeSample> BilinearPatch::SampleAt(Point2f uv) const {
     const int *v = &mesh->indices[4 * patchIndex];
     auto [p00, p10, p01, p11] = Corners();
-    Point2f uv = isRectangle ? u : SampleBilinear(u, AreaWeights(p00, p10, p01, p11));
     PatchTangents d = PatchDerivatives(uv, p00, p10, p01, p11);
     Vector3f ng = Cross(d.dpdu, d.dpdv);
     if (LengthSquared(ng) == 0)
@@ -230,9 +238,41 @@ pstd::optional<ShapeSample> BilinearPatch::Sample(Point2f u) const {
     return MakeSample(Bilerp(uv, p00, p10, p01, p11), n, st, pdf);
 }
 
+// A rectangle's spherical rectangle from the receiver, or nothing where area sampling serves
+// (a patch that is not a rectangle, or a solid angle outside SampledBySolidAngle's range).
+pstd::optional<SphericalRectangle> BilinearPatch::SphericalFrom(Point3f p) const {
+    if (!isRectangle)
+        return {};
+    auto [p00, p10, p01, p11] = Corners();
+    SphericalRectangle rectangle(p00, p10 - p00, p01 - p00, p);
+    if (!SampledBySolidAngle(rectangle.Area()))
+        return {};
+    return rectangle;
+}
+
+// The corners of the spherical rectangle's square are the patch's p00, p10, p01, p11.
+std::array<Float, 4> BilinearPatch::CosineWarp(const ShapeSampleContext &ctx) const {
+    auto [p00, p10, p01, p11] = Corners();
+    return CosineWarpWeights(ctx.ns, {Normalize(p00 - ctx.p), Normalize(p10 - ctx.p), Normalize(p01 - ctx.p),
+                                      Normalize(p11 - ctx.p)});
+}
+
 pstd::optional<ShapeSample> BilinearPatch::Sample(const ShapeSampleContext &ctx,
                                                   Point2f u) const {
-    return SampleBySolidAngle(*this, ctx, u);
+    pstd::optional<SphericalRectangle> rectangle = SphericalFrom(ctx.p);
+    if (!rectangle)
+        return SampleBySolidAngle(*this, ctx, u);
+    Float pdf = 1 / rectangle->Area();
+    if (ctx.ns != Normal3f(0, 0, 0)) {
+        std::array<Float, 4> w = CosineWarp(ctx);
+        u = SampleBilinear(u, w);
+        pdf *= BilinearPDF(u, w);
+    }
+    pstd::optional<ShapeSample> ss = SampleAt(rectangle->Sample(u));
+    if (!ss || !(pdf > 0))
+        return {};
+    ss->pdf = pdf;
+    return ss;
 }
 
 Float BilinearPatch::PDF(const ShapeSampleContext &ctx, Vector3f wi) const {
@@ -242,6 +282,12 @@ Float BilinearPatch::PDF(const ShapeSampleContext &ctx, Vector3f wi) const {
         IntersectBilinearPatch(SpawnRay(ctx, w), Infinity, p00, p10, p01, p11);
     if (!hit)
         return 0;
+    if (pstd::optional<SphericalRectangle> rectangle = SphericalFrom(ctx.p)) {
+        Float pdf = 1 / rectangle->Area();
+        if (ctx.ns != Normal3f(0, 0, 0))
+            pdf *= BilinearPDF(rectangle->Invert(hit->uv), CosineWarp(ctx));
+        return pdf;
+    }
     PatchTangents d = PatchDerivatives(hit->uv, p00, p10, p01, p11);
     Vector3f ng = Cross(d.dpdu, d.dpdv);
     if (LengthSquared(ng) == 0)

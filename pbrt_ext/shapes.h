@@ -201,6 +201,8 @@ pstd::optional<BilinearIntersection> IntersectBilinearPatch(const Ray &ray, Floa
                                                             Point3f p00, Point3f p10,
                                                             Point3f p01, Point3f p11);
 
+class SphericalRectangle;  // util/sphericalsampling.h
+
 class BilinearPatch {
   public:
     BilinearPatch(const BilinearPatchMesh *mesh, int patchIndex);
@@ -209,8 +211,8 @@ class BilinearPatch {
     Float Area() const { return area; }
     pstd::optional<ShapeIntersection> Intersect(const Ray &ray, Float tMax = Infinity) const;
     bool IntersectP(const Ray &ray, Float tMax = Infinity) const;
-    // Rectangles are sampled uniformly in (u, v); other patches by a bilinear warp whose corner
-    // weights follow the area element, as pbrt-v4.
+    // By area: rectangles uniformly in (u, v), other patches by a bilinear warp whose corner
+    // weights follow the area element; from a point, rectangles by solid angle. As pbrt-v4.
     pstd::optional<ShapeSample> Sample(Point2f u) const;
     pstd::optional<ShapeSample> Sample(const ShapeSampleContext &ctx, Point2f u) const;
     Float PDF(const ShapeSampleContext &ctx, Vector3f wi) const;
@@ -225,6 +227,9 @@ class BilinearPatch {
     std::array<Point3f, 4> Corners() const;
     // Area density of the (u, v) sampling at uv, per unit area of the surface.
     Float AreaPDF(Point2f uv) const;
+    pstd::optional<ShapeSample> SampleAt(Point2f uv) const;
+    pstd::optional<SphericalRectangle> SphericalFrom(Point3f p) const;
+    std::array<Float, 4> CosineWarp(const ShapeSampleContext &ctx) const;
 
     const BilinearPatchMesh *mesh;
     int patchIndex;

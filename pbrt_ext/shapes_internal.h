@@ -117,4 +117,21 @@ double IntegrateUnitSquare(F f) {
     return sum / 4;
 }
 
+// Whether a triangle or rectangle subtending this solid angle is sampled uniformly in it, as
+// pbrt-v4 decides: below 3e-4 sr the spherical construction loses precision and area sampling
+// is as good, and near a whole hemisphere it becomes unstable.
+inline bool SampledBySolidAngle(Float solidAngle) {
+    constexpr Float kMinSphericalSampleArea = 3e-4f, kMaxSphericalSampleArea = 6.22f;
+    return solidAngle >= kMinSphericalSampleArea && solidAngle <= kMaxSphericalSampleArea;
+}
+
+// The bilinear warp that approximates the receiver's cosine across a spherical sample's square
+// (pbrt-v4): the cosines toward what the square's corners (0, 0), (1, 0), (0, 1), (1, 1) map to,
+// floored at 0.01 so that no direction the light reaches gets density 0.
+inline std::array<Float, 4> CosineWarpWeights(Normal3f ns, const std::array<Vector3f, 4> &cornerDirections) {
+    std::array<Float, 4> w;
+    for (int i = 0; i < 4; ++i) w[size_t(i)] = std::max<Float>(0.01f, AbsDot(ns, cornerDirections[size_t(i)]));
+    return w;
+}
+
 }  // namespace pbrt::shapedetail

@@ -86,20 +86,10 @@ pstd::optional<TriangleHit> IntersectTriangle(const Ray &ray, Float tMax, Point3
     return TriangleHit{{e0 * invDet, e1 * invDet, e2 * invDet}, t};
 }
 
-// Whether a triangle (or rectangle) subtending this solid angle is sampled uniformly in it, as
-// pbrt-v4 decides: below 3e-4 sr the spherical construction loses precision and area sampling
-// is as good, and near a whole hemisphere it becomes unstable.
-bool SampledBySolidAngle(Float solidAngle) {
-    constexpr Float kMinSphericalSampleArea = 3e-4f, kMaxSphericalSampleArea = 6.22f;
-    return solidAngle >= kMinSphericalSampleArea && solidAngle <= kMaxSphericalSampleArea;
-}
-
-// The bilinear warp that approximates the cosine at the receiver across the triangle's solid
-// angle (pbrt-v4): the corners of the spherical sample's square map to v1, v1, v0, v2. Floored
-// at 0.01 so that no direction the light reaches gets density 0.
-std::array<Float, 4> CosineWarpWeights(const SphericalTriangle &spherical, Normal3f ns) {
-    auto cosine = [&](int i) { return std::max<Float>(0.01f, AbsDot(ns, spherical.VertexDirection(i))); };
-    return {cosine(1), cosine(1), cosine(0), cosine(2)};
+// The corners of the spherical triangle's square map to v1, v1, v0, v2.
+std::array<Float, 4> TriangleCosineWarp(const SphericalTriangle &spherical, Normal3f ns) {
+    return CosineWarpWeights(ns, {spherical.VertexDirection(1), spherical.VertexDirection(1),
+                                  spherical.VertexDirection(0), spherical.VertexDirection(2)});
 }
 
 // pbrt-v4's default parameterization when a mesh has no uv.
@@ -211,7 +201,7 @@ pstd::optional<ShapeSample> Triangle::Sample(const ShapeSampleContext &ctx, Poin
         return SampleBySolidAngle(*this, ctx, u);
     Float pdf = 1 / spherical.Area();
     if (ctx.ns != Normal3f(0, 0, 0)) {
-        std::array<Float, 4> w = CosineWarpWeights(spherical, ctx.ns);
+        std::array<Float, 4> w = TriangleCosineWarp(spherical, ctx.ns);
         u = SampleBilinear(u, w);
         pdf *= BilinearPDF(u, w);
     }
@@ -236,7 +226,7 @@ Float Triangle::PDF(const ShapeSampleContext &ctx, Vector3f wi) const {
     }
     Float pdf = 1 / spherical.Area();
     if (ctx.ns != Normal3f(0, 0, 0))
-        pdf *= BilinearPDF(spherical.Invert(w), CosineWarpWeights(spherical, ctx.ns));
+        pdf *= BilinearPDF(spherical.Invert(w), TriangleCosineWarp(spherical, ctx.ns));
     return pdf;
 }
 

@@ -403,6 +403,7 @@ struct ChiCase {
 TEST(ShapeSampling, ChiSquare) {
     auto mesh = OneTriangle();
     auto patch = OnePatch(Point3f(1.5f, 1, 1));
+    auto square = OnePatch(Point3f(1, 1, 0));
     std::vector<ChiCase> cases = {
         {"sphere cone", [] { return Shape(Sphere(Translate(Vector3f(0, 0, 3)), false, 1, -1, 1, 360)); },
          Point3f(0, 0, 0)},
@@ -422,6 +423,12 @@ TEST(ShapeSampling, ChiSquare) {
          Normal3f(Normalize(Vector3f(1, 0.5f, -0.3f)))},
         {"triangle, edge-on receiver", [&] { return Shape(Triangle(mesh.get(), 0)); }, Point3f(0.3f, 0.3f, 0.2f),
          Normal3f(1, 0, 0)},
+        // A rectangular patch: by solid angle (0.6 sr), then warped (facing, tilted receivers).
+        {"rectangle", [&] { return Shape(BilinearPatch(square.get(), 0)); }, Point3f(0.2f, 0.7f, 0.9f)},
+        {"rectangle, cosine warp", [&] { return Shape(BilinearPatch(square.get(), 0)); }, Point3f(0.2f, 0.7f, 0.9f),
+         Normal3f(0, 0, -1)},
+        {"rectangle, tilted receiver", [&] { return Shape(BilinearPatch(square.get(), 0)); },
+         Point3f(1.4f, -0.3f, 0.5f), Normal3f(Normalize(Vector3f(-1, 0.4f, -0.5f)))},
 
         {"bilinear patch", [&] { return Shape(BilinearPatch(patch.get(), 0)); },
          Point3f(0.5f, 0.5f, 4)},
@@ -491,6 +498,53 @@ TEST(SphericalTriangle, AreaSamplingOutsideItsRange) {
             Float expected = c.spherical ? 1 / solidAngle : areaPdf;
             EXPECT_NEAR(ss->pdf, expected, 1e-3f * expected) << "solid angle " << solidAngle;
             EXPECT_NEAR(tri.PDF(ctx, Normalize(w)), ss->pdf, 1e-3f * ss->pdf) << "solid angle " << solidAngle;
+        }
+    }
+}
+
+// The unit square seen from above its centre at height h subtends 4 asin(1 / (1 + 4 h^2)); each
+// uniform sample of a spherical rectangle inverts to the u that made it.
+TEST(SphericalRectangle, AreaAndInverse) {
+    for (Float h : {0.1f, 0.5f, 3.0f}) {
+        SphericalRectangle rectangle(Point3f(0, 0, 0), Vector3f(1, 0, 0), Vector3f(0, 1, 0), Point3f(0.5f, 0.5f, h));
+        EXPECT_NEAR(rectangle.Area(), 4 * std::asin(1 / (1 + 4 * h * h)), 1e-5f) << h;
+    }
+    RNG rng(6);
+    for (Point3f p : {Point3f(0.2f, 0.7f, 0.9f), Point3f(-2, 1, 0.3f), Point3f(0.5f, 0.5f, -0.05f)}) {
+        SphericalRectangle rectangle(Point3f(0, 0, 0), Vector3f(1, 0, 0), Vector3f(0, 2, 0), p);
+        for (int i = 0; i < 2000; ++i) {
+            Point2f u(rng.Uniform<Float>(), rng.Uniform<Float>());
+            Point2f back = rectangle.Invert(rectangle.Sample(u));
+            EXPECT_NEAR(back.x, u.x, 2e-3f) << "p " << p.x << "," << p.y << "," << p.z;
+            EXPECT_NEAR(back.y, u.y, 2e-3f) << "p " << p.x << "," << p.y << "," << p.z;
+        }
+    }
+}
+
+// Rectangular patches: uniform in solid angle within pbrt-v4's range, area sampling outside it
+// and for patches that are not rectangles; Sample's density is PDF's, with and without the warp.
+TEST(SphericalRectangle, PatchSampleAndPdfAgree) {
+    auto square = OnePatch(Point3f(1, 1, 0));
+    BilinearPatch patch(square.get(), 0);
+    RNG rng(4);
+    struct Case {
+        Point3f p;
+        Normal3f ns;
+        bool uniform;
+    };
+    for (Case c : {Case{Point3f(0.2f, 0.7f, 0.9f), Normal3f(0, 0, 0), true},
+                   Case{Point3f(0.2f, 0.7f, 0.9f), Normal3f(0, 0, -1), false},
+                   Case{Point3f(0.5f, 0.5f, 200), Normal3f(0, 0, 0), false}}) {
+        ShapeSampleContext ctx(c.p, c.ns, c.ns);
+        Float solidAngle = SphericalRectangle(Point3f(0, 0, 0), Vector3f(1, 0, 0), Vector3f(0, 1, 0), c.p).Area();
+        for (int i = 0; i < 500; ++i) {
+            pstd::optional<ShapeSample> ss = patch.Sample(ctx, Point2f(rng.Uniform<Float>(), rng.Uniform<Float>()));
+            ASSERT_TRUE(ss);
+            if (c.uniform) {
+                EXPECT_NEAR(ss->pdf, 1 / solidAngle, 1e-4f / solidAngle);
+            }
+            Vector3f w = Normalize(ss->intr.p - c.p);
+            EXPECT_NEAR(patch.PDF(ctx, w), ss->pdf, 5e-3f * ss->pdf) << "solid angle " << solidAngle;
         }
     }
 }

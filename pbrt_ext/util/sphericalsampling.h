@@ -1,7 +1,9 @@
-// Uniform sampling of the solid angle a triangle subtends (pbrt-v4's SampleSphericalTriangle
-// and InvertSphericalTriangleSample, as one class; after Arvo, "Stratified Sampling of Spherical Triangles",
-// SIGGRAPH 1995). The arithmetic is in double: the spherical excess of a small triangle is the
-// difference of nearly equal angles, and sample and inverse must agree to the last float.
+// Uniform sampling of the solid angle a triangle or a rectangle subtends (pbrt-v4's
+// SampleSphericalTriangle/InvertSphericalTriangleSample, after Arvo, "Stratified Sampling of
+// Spherical Triangles", SIGGRAPH 1995; and SampleSphericalRectangle/InvertSphericalRectangleSample,
+// after Urena, Fajardo and King, "An Area-Preserving Parametrization for Spherical Rectangles",
+// EGSR 2013), each as one class. The arithmetic is in double: the spherical excess of a small
+// polygon is the difference of nearly equal angles, and sample and inverse must agree.
 #pragma once
 
 #include "pbrt_ext/pbrt.h"
@@ -124,6 +126,73 @@ class SphericalTriangle {
     Point3f p;
     spherical::Dir d[3] = {};
     double area = 0;
+};
+
+// The rectangle with corner s and orthogonal edges ex and ey as seen from p, in the frame of its
+// edges (x along ex, y along ey, z toward p's side, the rectangle at height z0 < 0 below p).
+// Points are given as fractions (s, t) along ex and ey: a rectangular bilinear patch's (u, v).
+class SphericalRectangle {
+  public:
+    SphericalRectangle(Point3f s, Vector3f ex, Vector3f ey, Point3f p) {
+        using namespace spherical;
+        double exLength = Length(ToDir(ex)), eyLength = Length(ToDir(ey));
+        if (exLength == 0 || eyLength == 0) return;
+        Dir x = (1 / exLength) * ToDir(ex), y = (1 / eyLength) * ToDir(ey), z = Cross(x, y), d = ToDir(s - p);
+        z0 = -std::abs(Dot(d, z));
+        if (z0 == 0) return;  // p in the rectangle's plane: it subtends nothing
+        x0 = Dot(d, x);
+        y0 = Dot(d, y);
+        x1 = x0 + exLength;
+        y1 = y0 + eyLength;
+        // The planes through p and each edge, and the angles between neighbouring ones.
+        Dir v00{x0, y0, z0}, v01{x0, y1, z0}, v10{x1, y0, z0}, v11{x1, y1, z0};
+        Dir n0 = Normalize(Cross(v00, v10)), n1 = Normalize(Cross(v10, v11)), n2 = Normalize(Cross(v11, v01)),
+            n3 = Normalize(Cross(v01, v00));
+        double g0 = AngleBetween(-1.0 * n0, n1), g1 = AngleBetween(-1.0 * n1, n2),
+               g2 = AngleBetween(-1.0 * n2, n3), g3 = AngleBetween(-1.0 * n3, n0);
+        b0 = n0.z;
+        b1 = n2.z;
+        k = 2 * Pi - g2 - g3;
+        area = std::max(0.0, g0 + g1 - k);
+    }
+
+    // The solid angle, 0 for a degenerate rectangle or a p in its plane.
+    Float Area() const { return Float(area); }
+
+    // The point, as edge fractions, seen from p in a direction uniform over the solid angle
+    // (density 1 / Area()): u0 picks the column x whose left part [x0, x] subtends u0 times the
+    // whole, u1 the height along it uniformly in the sine of its elevation.
+    Point2f Sample(Point2f u) const {
+        double au = u[0] * area + k;
+        double fu = (std::cos(au) * b0 - b1) / std::sin(au);
+        double cu = std::clamp(std::copysign(1.0, fu) / std::sqrt(fu * fu + b0 * b0), -1.0, 1.0);
+        double sinCu = std::sqrt(std::max(0.0, 1 - cu * cu));
+        double xu = sinCu > 0 ? std::clamp(-cu * z0 / sinCu, x0, x1) : (cu < 0 ? x0 : x1);
+        double dd = std::sqrt(xu * xu + z0 * z0);
+        double h0 = y0 / std::sqrt(dd * dd + y0 * y0), h1 = y1 / std::sqrt(dd * dd + y1 * y1);
+        double hv = h0 + u[1] * (h1 - h0), hv2 = hv * hv;
+        double yv = hv2 < 1 ? std::clamp(hv * dd / std::sqrt(1 - hv2), y0, y1) : y1;
+        return Point2f(Float((xu - x0) / (x1 - x0)), Float((yv - y0) / (y1 - y0)));
+    }
+
+    // The u that Sample maps to the point at edge fractions st: u0 from the solid angle of the
+    // part left of its column (two spherical triangles), u1 from its elevation.
+    Point2f Invert(Point2f st) const {
+        using namespace spherical;
+        if (!(area > 0)) return {};
+        double xu = x0 + st[0] * (x1 - x0), yv = y0 + st[1] * (y1 - y0);
+        double dd = std::sqrt(xu * xu + z0 * z0);
+        double h0 = y0 / std::sqrt(dd * dd + y0 * y0), h1 = y1 / std::sqrt(dd * dd + y1 * y1);
+        double hv = yv / std::sqrt(dd * dd + yv * yv);
+        double u1 = h1 != h0 ? (hv - h0) / (h1 - h0) : 0;
+        Dir a = Normalize(Dir{x0, y0, z0}), b = Normalize(Dir{xu, y0, z0}), c = Normalize(Dir{xu, y1, z0}),
+            e = Normalize(Dir{x0, y1, z0});
+        double u0 = (TriangleArea(a, b, c) + TriangleArea(a, c, e)) / area;
+        return Point2f(Float(std::clamp(u0, 0.0, 1.0)), Float(std::clamp(u1, 0.0, 1.0)));
+    }
+
+  private:
+    double x0 = 0, x1 = 0, y0 = 0, y1 = 0, z0 = 0, b0 = 0, b1 = 0, k = 0, area = 0;
 };
 
 }  // namespace pbrt
