@@ -32,6 +32,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -157,6 +158,21 @@ void RegisterSweep(const std::string &study, const std::string &scene, const std
     }
 }
 
+// One override (choice, e.g. &RenderOverrides::lightSampler) set to each of choices in each scene,
+// under MIS with the best fabric sampler.
+template <size_t NScenes, size_t NChoices>
+void RegisterChoiceSweeps(const char *study, const char *const (&scenes)[NScenes],
+                          const char *const (&choices)[NChoices],
+                          std::optional<std::string> RenderOverrides::*choice) {
+    for (const char *scene : scenes)
+        for (const char *value : choices) {
+            RenderOverrides overrides;
+            overrides.fabricSampler = FabricSampling::Best;
+            overrides.*choice = value;
+            RegisterSweep(study, scene, value, "mis", overrides);
+        }
+}
+
 // Scenes outermost, so that each reference is rendered (or read) at its scene's first benchmark.
 bool RegisterConvergence() {
     for (const char *scene : kScenes)
@@ -166,20 +182,8 @@ bool RegisterConvergence() {
                 overrides.fabricSampler = ParseFabricSampling(sampler);
                 RegisterSweep("Convergence", scene, sampler, strategy, overrides);
             }
-    for (const char *scene : kLightSamplerScenes)
-        for (const char *lightSampler : kLightSamplers) {
-            RenderOverrides overrides;
-            overrides.fabricSampler = FabricSampling::Best;
-            overrides.lightSampler = lightSampler;
-            RegisterSweep("LightSampler", scene, lightSampler, "mis", overrides);
-        }
-    for (const char *scene : kSamplerScenes)
-        for (const char *sampler : kSamplers) {
-            RenderOverrides overrides;
-            overrides.fabricSampler = FabricSampling::Best;
-            overrides.sampler = sampler;
-            RegisterSweep("Sampler", scene, sampler, "mis", overrides);
-        }
+    RegisterChoiceSweeps("LightSampler", kLightSamplerScenes, kLightSamplers, &RenderOverrides::lightSampler);
+    RegisterChoiceSweeps("Sampler", kSamplerScenes, kSamplers, &RenderOverrides::sampler);
     return true;
 }
 

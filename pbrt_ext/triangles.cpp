@@ -215,11 +215,12 @@ pstd::optional<ShapeSample> Triangle::Sample(const ShapeSampleContext &ctx, Poin
 
 Float Triangle::PDF(const ShapeSampleContext &ctx, Vector3f wi) const {
     Vector3f w = Normalize(wi);
-    auto [p0, p1, p2] = Vertices(mesh, triIndex);
+    std::array<Point3f, 3> v = Vertices(mesh, triIndex);
+    auto [p0, p1, p2] = v;
     pstd::optional<TriangleHit> hit = IntersectTriangle(SpawnRay(ctx, w), Infinity, p0, p1, p2);
     if (!hit)
         return 0;
-    SphericalTriangle spherical(Vertices(mesh, triIndex), ctx.p);
+    SphericalTriangle spherical(v, ctx.p);
     if (!SampledBySolidAngle(spherical.Area())) {
         Normal3f n(Cross(p1 - p0, p2 - p0));
         return AreaToSolidAngle(1 / Area(), ctx.p, Interpolate(hit->b, p0, p1, p2), Normalize(n), w);

@@ -112,6 +112,7 @@ TEST(LowDiscrepancy, HaltonDigitPermutationsAreSeededPermutations) {
     for (int b : {0, 1, 5, HaltonDigitPermutations::kTabledBases - 1, HaltonDigitPermutations::kTabledBases,
                   kPrimeTableSize - 1}) {
         int base = kPrimes[b];
+        EXPECT_EQ(kRadicalInverseDigits[size_t(b)], RadicalInverseDigits(base));  // compile time = run time
         for (int digitIndex = 0; digitIndex < RadicalInverseDigits(base); ++digitIndex) {
             std::vector<int> seen(base, 0);
             for (int digit = 0; digit < base; ++digit) {

@@ -1,5 +1,7 @@
 #include "pbrt_ext/util/exrfile.h"
 
+#include "pbrt_ext/util/resourcelimits.h"
+
 #include <ImfChannelList.h>
 #include <ImfCompression.h>
 #include <ImfFrameBuffer.h>
@@ -13,11 +15,6 @@
 namespace pbrt {
 
 namespace {
-
-uint64_t SaturatingMultiply(uint64_t a, uint64_t b) {
-    uint64_t product;
-    return __builtin_mul_overflow(a, b, &product) ? UINT64_MAX : product;
-}
 
 // The scanlines a chunk holds, per compression (the OpenEXR file layout's table).
 int ScanlinesPerBlock(Imf::Compression compression) {
@@ -57,8 +54,8 @@ class EXRReader : public ImageFileReader {
         // wide declares gigabytes of it (found by the image fuzz target, docs/fuzzing.md).
         uint64_t rowsAtOnce = header.hasTileDescription() ? uint64_t(header.tileDescription().ySize)
                                                           : uint64_t(ScanlinesPerBlock(header.compression()));
-        spec.decodeBufferBytes = SaturatingMultiply(SaturatingMultiply(2 * rowsAtOnce, uint64_t(width)),
-                                                    uint64_t(spec.nChannels) * sizeof(float));
+        spec.decodeBufferBytes =
+            SaturatingProduct({2 * rowsAtOnce, uint64_t(width), uint64_t(spec.nChannels), sizeof(float)});
     } catch (const std::exception &e) {
         throw std::runtime_error(std::string("cannot read the image: OpenEXR: ") + e.what());
     }

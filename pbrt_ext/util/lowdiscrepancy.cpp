@@ -59,12 +59,11 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint32_t seed) : seed(seed) {
     int size = 0;
     for (int b = 0; b < kTabledBases; ++b) {
         offsets[size_t(b)] = size;
-        digits[size_t(b)] = RadicalInverseDigits(kPrimes[size_t(b)]);
-        size += digits[size_t(b)] * kPrimes[size_t(b)];
+        size += kRadicalInverseDigits[size_t(b)] * kPrimes[size_t(b)];
     }
     table.resize(size_t(size));
     for (int b = 0; b < kTabledBases; ++b)
-        for (int digitIndex = 0; digitIndex < digits[size_t(b)]; ++digitIndex)
+        for (int digitIndex = 0; digitIndex < kRadicalInverseDigits[size_t(b)]; ++digitIndex)
             for (int digit = 0; digit < kPrimes[size_t(b)]; ++digit)
                 table[size_t(offsets[size_t(b)] + digitIndex * kPrimes[size_t(b)] + digit)] =
                     uint16_t(Compute(b, digitIndex, digit));

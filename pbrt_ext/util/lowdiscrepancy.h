@@ -233,15 +233,21 @@ inline uint64_t InverseRadicalInverse(uint64_t inverse, int base, int nDigits) {
 // become nonzero under a permutation. (The radical inverses sum their digits in double and
 // round once, so that a point never crosses into the next b^-k interval by the rounding of
 // b^-n: a float accumulation drifts by up to a few ulps, enough to break stratification.)
-inline int RadicalInverseDigits(int base) {
+constexpr int RadicalInverseDigits(int base) {
     int nDigits = 0;
     Float invBase = Float(1) / Float(base), invBaseM = 1;
-    while (1 - (base - 1) * invBaseM < 1) {
+    while (1 - Float(base - 1) * invBaseM < 1) {
         ++nDigits;
         invBaseM *= invBase;
     }
     return nDigits;
 }
+// RadicalInverseDigits of each prime base, at compile time.
+inline constexpr std::array<int, kPrimeTableSize> kRadicalInverseDigits = [] {
+    std::array<int, kPrimeTableSize> digits{};
+    for (int i = 0; i < kPrimeTableSize; ++i) digits[size_t(i)] = RadicalInverseDigits(kPrimes[size_t(i)]);
+    return digits;
+}();
 
 // Random permutations of the digits 0..b-1, one per digit position and base, selected by a
 // seed (pbrt-v4's DigitPermutation): Permute(baseIndex, digitIndex, digit). The permutations
@@ -253,10 +259,6 @@ class HaltonDigitPermutations {
 
     explicit HaltonDigitPermutations(uint32_t seed);
 
-    // RadicalInverseDigits of the base, stored for the tabled ones.
-    int Digits(int baseIndex) const {
-        return baseIndex < kTabledBases ? digits[baseIndex] : RadicalInverseDigits(kPrimes[baseIndex]);
-    }
     int Permute(int baseIndex, int digitIndex, int digit) const {
         if (baseIndex < kTabledBases)
             return table[offsets[baseIndex] + digitIndex * kPrimes[baseIndex] + digit];
@@ -269,7 +271,7 @@ class HaltonDigitPermutations {
 
   private:
     uint32_t seed;
-    std::array<int, kTabledBases> offsets, digits;
+    std::array<int, kTabledBases> offsets;
     std::vector<uint16_t> table;
 };
 
@@ -299,7 +301,7 @@ inline Float PermutedRadicalInverse(uint64_t a, uint32_t base, int nDigits, Perm
 // The radical inverse with every digit position's digits permuted (Faure's scrambling, with
 // random permutations): each b^-k interval still holds the same points, in another order.
 inline Float ScrambledRadicalInverse(int baseIndex, uint64_t a, const HaltonDigitPermutations &perm) {
-    return PermutedRadicalInverse(a, uint32_t(kPrimes[baseIndex]), perm.Digits(baseIndex),
+    return PermutedRadicalInverse(a, uint32_t(kPrimes[baseIndex]), kRadicalInverseDigits[size_t(baseIndex)],
                                   [&](int digitIndex, int digit, uint64_t) {
                                       return perm.Permute(baseIndex, digitIndex, digit);
                                   });
@@ -309,7 +311,7 @@ inline Float ScrambledRadicalInverse(int baseIndex, uint64_t a, const HaltonDigi
 // it (the interval the point already lies in), so points are also shuffled inside intervals.
 inline Float OwenScrambledRadicalInverse(int baseIndex, uint64_t a, uint32_t hash) {
     uint32_t base = uint32_t(kPrimes[baseIndex]);
-    return PermutedRadicalInverse(a, base, RadicalInverseDigits(int(base)),
+    return PermutedRadicalInverse(a, base, kRadicalInverseDigits[size_t(baseIndex)],
                                   [&](int, int digit, uint64_t digitsSoFar) {
                                       uint32_t digitHash = uint32_t(MixBits(hash ^ digitsSoFar));
                                       return PermutationElement(uint32_t(digit), base, digitHash);

@@ -1,5 +1,7 @@
 #include "pbrt_ext/util/pngfile.h"
 
+#include "pbrt_ext/util/resourcelimits.h"
+
 #include <png.h>
 
 #include <algorithm>
@@ -75,7 +77,7 @@ class PNGReader : public ImageFileReader {
         spec.channelNames = header.channels >= 3 ? std::vector<std::string>{"R", "G", "B", "A"}
                                                  : std::vector<std::string>{"Y", "A"};
         spec.channelNames.resize(size_t(header.channels));
-        spec.decodeBufferBytes = uint64_t(header.rowBytes) * header.height;  // the rows, below
+        spec.decodeBufferBytes = SaturatingProduct({header.rowBytes, header.height});  // the rows, below
     }
     ~PNGReader() override {
         png_destroy_read_struct(png ? &png : nullptr, info ? &info : nullptr, nullptr);

@@ -19,28 +19,16 @@ namespace pbrt {
 
 namespace spherical {
 
-struct Dir {
-    double x, y, z;
-};
-inline Dir operator+(Dir a, Dir b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline Dir operator-(Dir a, Dir b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline Dir operator*(double s, Dir a) { return {s * a.x, s * a.y, s * a.z}; }
-inline double Dot(Dir a, Dir b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline Dir Cross(Dir a, Dir b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline double Length(Dir a) { return std::sqrt(Dot(a, a)); }
-inline Dir Normalize(Dir a) { return (1 / Length(a)) * a; }
-inline Dir ToDir(Vector3f v) { return {v.x, v.y, v.z}; }
-// v's component orthogonal to unit w, normalized.
-inline Dir Orthogonal(Dir v, Dir w) { return Normalize(v - Dot(v, w) * w); }
-inline double AngleBetween(Dir a, Dir b) { return std::atan2(Length(Cross(a, b)), Dot(a, b)); }
+// Directions in double; vecmath.h's operations serve them as they serve Vector3f.
+using Vector3d = Vector3<double>;
 
-inline Dir ToDir(Point3f p) { return {p.x, p.y, p.z}; }
+// v's component orthogonal to unit w, normalized.
+inline Vector3d Orthogonal(Vector3d v, Vector3d w) { return Normalize(GramSchmidt(v, w)); }
+inline double AngleBetween(Vector3d a, Vector3d b) { return std::atan2(Length(Cross(a, b)), Dot(a, b)); }
 
 // The solid angle of the spherical triangle with unit vertices a, b, c (Van Oosterom and
 // Strackee's formula: no cancellation for small triangles).
-inline double TriangleArea(Dir a, Dir b, Dir c) {
+inline double TriangleArea(Vector3d a, Vector3d b, Vector3d c) {
     return std::abs(2 * std::atan2(Dot(a, Cross(b, c)), 1 + Dot(a, b) + Dot(a, c) + Dot(b, c)));
 }
 
@@ -53,10 +41,10 @@ class SphericalTriangle {
     SphericalTriangle(const std::array<Point3f, 3> &v, Point3f p) : v(v), p(p) {
         using namespace spherical;
         for (int i = 0; i < 3; ++i) {
-            d[i] = ToDir(v[i] - p);
+            d[i] = Vector3d(v[i] - p);
             double length = Length(d[i]);
             if (length == 0) return;  // p on a vertex: area stays 0
-            d[i] = (1 / length) * d[i];
+            d[i] /= length;
         }
         area = TriangleArea(d[0], d[1], d[2]);
     }
@@ -64,7 +52,7 @@ class SphericalTriangle {
     // The solid angle, 0 for a degenerate triangle or a p on a vertex.
     Float Area() const { return Float(area); }
     // The unit direction from p to vertex i, valid where Area() > 0.
-    Vector3f VertexDirection(int i) const { return Vector3f(Float(d[i].x), Float(d[i].y), Float(d[i].z)); }
+    Vector3f VertexDirection(int i) const { return Vector3f(d[i]); }
 
     // The barycentrics of the point seen from p in a direction uniform over the solid angle
     // (density 1 / Area()). u0 picks the sub-triangle (v0, v1, c') of area u0 times the whole,
@@ -72,8 +60,8 @@ class SphericalTriangle {
     // the cosine of its angle to v1. Empty where Area() is 0.
     pstd::optional<std::array<Float, 3>> Sample(Point2f u) const {
         using namespace spherical;
-        Dir a = d[0], b = d[1], c = d[2];
-        Dir nab = Cross(a, b), nac = Cross(a, c);
+        Vector3d a = d[0], b = d[1], c = d[2];
+        Vector3d nab = Cross(a, b), nac = Cross(a, c);
         if (!(area > 0) || Length(nab) == 0 || Length(nac) == 0) return {};
         // The triangle's angle at a, between the planes of its two edges there.
         double alpha = AngleBetween(nab, nac);
@@ -84,15 +72,15 @@ class SphericalTriangle {
         double k1 = t - cosAlpha, k2 = s + sinAlpha * Dot(a, b);
         double q = ((k2 * t - k1 * s) * cosAlpha - k2) / ((k2 * s + k1 * t) * sinAlpha);
         q = std::clamp(std::isfinite(q) ? q : 1.0, -1.0, 1.0);
-        Dir cPrime = q * a + std::sqrt(std::max(0.0, 1 - q * q)) * Orthogonal(c, a);
+        Vector3d cPrime = q * a + std::sqrt(std::max(0.0, 1 - q * q)) * Orthogonal(c, a);
 
         double z = 1 - u[1] * (1 - Dot(cPrime, b));
-        Dir w = z * b + std::sqrt(std::max(0.0, 1 - z * z)) * Orthogonal(cPrime, b);
+        Vector3d w = z * b + std::sqrt(std::max(0.0, 1 - z * z)) * Orthogonal(cPrime, b);
         if (!std::isfinite(w.x + w.y + w.z)) w = b;
 
         // Where the ray p + t w meets the triangle's plane (Cramer's rule on its edges).
-        Dir e1 = ToDir(v[1] - v[0]), e2 = ToDir(v[2] - v[0]), sp = ToDir(p - v[0]);
-        Dir s1 = Cross(w, e2);
+        Vector3d e1 = Vector3d(v[1] - v[0]), e2 = Vector3d(v[2] - v[0]), sp = Vector3d(p - v[0]);
+        Vector3d s1 = Cross(w, e2);
         double divisor = Dot(s1, e1);
         if (divisor == 0) return {};
         double b1 = std::clamp(Dot(sp, s1) / divisor, 0.0, 1.0);
@@ -109,12 +97,12 @@ class SphericalTriangle {
     // great circle through v1 and wi crosses the arc from v0 to v2.
     Point2f Invert(Vector3f wi) const {
         using namespace spherical;
-        Dir a = d[0], b = d[1], c = d[2], w = Normalize(ToDir(wi));
+        Vector3d a = d[0], b = d[1], c = d[2], w = Normalize(Vector3d(wi));
         if (!(area > 0)) return {};
-        Dir cPrime = Cross(Cross(b, w), Cross(c, a));
+        Vector3d cPrime = Cross(Cross(b, w), Cross(c, a));
         if (Length(cPrime) == 0) return {};
         cPrime = Normalize(cPrime);
-        if (Dot(cPrime, a + c) < 0) cPrime = -1.0 * cPrime;
+        if (Dot(cPrime, a + c) < 0) cPrime = -cPrime;
         double u0 = TriangleArea(a, b, cPrime) / area;
         double denominator = 1 - Dot(cPrime, b);
         double u1 = denominator > 0 ? (1 - Dot(w, b)) / denominator : 0;
@@ -124,7 +112,7 @@ class SphericalTriangle {
   private:
     std::array<Point3f, 3> v;
     Point3f p;
-    spherical::Dir d[3] = {};
+    spherical::Vector3d d[3];
     double area = 0;
 };
 
@@ -135,9 +123,10 @@ class SphericalRectangle {
   public:
     SphericalRectangle(Point3f s, Vector3f ex, Vector3f ey, Point3f p) {
         using namespace spherical;
-        double exLength = Length(ToDir(ex)), eyLength = Length(ToDir(ey));
+        double exLength = Length(Vector3d(ex)), eyLength = Length(Vector3d(ey));
         if (exLength == 0 || eyLength == 0) return;
-        Dir x = (1 / exLength) * ToDir(ex), y = (1 / eyLength) * ToDir(ey), z = Cross(x, y), d = ToDir(s - p);
+        Vector3d x = Vector3d(ex) / exLength, y = Vector3d(ey) / eyLength, z = Cross(x, y);
+        Vector3d d(s - p);
         z0 = -std::abs(Dot(d, z));
         if (z0 == 0) return;  // p in the rectangle's plane: it subtends nothing
         x0 = Dot(d, x);
@@ -145,11 +134,11 @@ class SphericalRectangle {
         x1 = x0 + exLength;
         y1 = y0 + eyLength;
         // The planes through p and each edge, and the angles between neighbouring ones.
-        Dir v00{x0, y0, z0}, v01{x0, y1, z0}, v10{x1, y0, z0}, v11{x1, y1, z0};
-        Dir n0 = Normalize(Cross(v00, v10)), n1 = Normalize(Cross(v10, v11)), n2 = Normalize(Cross(v11, v01)),
-            n3 = Normalize(Cross(v01, v00));
-        double g0 = AngleBetween(-1.0 * n0, n1), g1 = AngleBetween(-1.0 * n1, n2),
-               g2 = AngleBetween(-1.0 * n2, n3), g3 = AngleBetween(-1.0 * n3, n0);
+        Vector3d v00{x0, y0, z0}, v01{x0, y1, z0}, v10{x1, y0, z0}, v11{x1, y1, z0};
+        Vector3d n0 = Normalize(Cross(v00, v10)), n1 = Normalize(Cross(v10, v11));
+        Vector3d n2 = Normalize(Cross(v11, v01)), n3 = Normalize(Cross(v01, v00));
+        double g0 = AngleBetween(-n0, n1), g1 = AngleBetween(-n1, n2),
+               g2 = AngleBetween(-n2, n3), g3 = AngleBetween(-n3, n0);
         b0 = n0.z;
         b1 = n2.z;
         k = 2 * Pi - g2 - g3;
@@ -185,8 +174,8 @@ class SphericalRectangle {
         double h0 = y0 / std::sqrt(dd * dd + y0 * y0), h1 = y1 / std::sqrt(dd * dd + y1 * y1);
         double hv = yv / std::sqrt(dd * dd + yv * yv);
         double u1 = h1 != h0 ? (hv - h0) / (h1 - h0) : 0;
-        Dir a = Normalize(Dir{x0, y0, z0}), b = Normalize(Dir{xu, y0, z0}), c = Normalize(Dir{xu, y1, z0}),
-            e = Normalize(Dir{x0, y1, z0});
+        Vector3d a = Normalize(Vector3d(x0, y0, z0)), b = Normalize(Vector3d(xu, y0, z0));
+        Vector3d c = Normalize(Vector3d(xu, y1, z0)), e = Normalize(Vector3d(x0, y1, z0));
         double u0 = (TriangleArea(a, b, c) + TriangleArea(a, c, e)) / area;
         return Point2f(Float(std::clamp(u0, 0.0, 1.0)), Float(std::clamp(u1, 0.0, 1.0)));
     }
