@@ -298,11 +298,12 @@ Sampler CreateSampler(const SceneEntity &e, Point2i fullResolution,
     }
     if (std::optional<std::string> error = SamplerNameError(name))
         throw ParseError(e.loc, *error);
-    if (name == "pmj02bn")
-        Substitute(e, "Sampler", "\"zsobol\" (same sample count; a low-discrepancy sampler)");
-    RandomizeStrategy randomize = SamplerRandomization(e, name, overridden);
-    if (name != "pmj02bn")
+    if (name == "pmj02bn") {
         reportUnused();
+        return MakeSampler(e, overrides, {"pixelsamples"}, [&] { return PMJ02BNSampler(spp, seed); });
+    }
+    RandomizeStrategy randomize = SamplerRandomization(e, name, overridden);
+    reportUnused();
     return MakeSampler(e, overrides, {"pixelsamples"}, [&]() -> Sampler {
         if (name == "halton") return HaltonSampler(spp, fullResolution, randomize, seed);
         if (name == "sobol") return SobolSampler(spp, fullResolution, randomize, seed);

@@ -172,6 +172,39 @@ std::string PaddedSobolSampler::ToString() const {
                        RandomizeName(randomize), seed);
 }
 
+PMJ02BNSampler::PMJ02BNSampler(int samplesPerPixel, int seed)
+    : samplesPerPixel(samplesPerPixel), seed(seed) {
+    if (samplesPerPixel < 1 || samplesPerPixel > kPMJ02bnSamples)
+        throw std::runtime_error(fmt::format("pmj02bn sampler: {} samples per pixel; expected 1 to {}",
+                                             samplesPerPixel, kPMJ02bnSamples));
+    int log4Samples = (std::countr_zero(std::bit_ceil(unsigned(samplesPerPixel))) + 1) / 2;
+    if (samplesPerPixel != 1 << (2 * log4Samples))
+        Warning("pmj02bn sampler: %d samples per pixel is not a power of 4 (1, 4, 16, 64, ...); "
+                "its pixel samples are then part of a net", samplesPerPixel);
+    // A tile of pixelTileSize^2 pixels holds kPMJ02bnSamples points, a power of 4 per pixel
+    // (a (0,2)-sequence puts as many in each square of that size); each pixel keeps its first
+    // samplesPerPixel, in sequence order.
+    int log4Points = std::countr_zero(unsigned(kPMJ02bnSamples)) / 2;
+    pixelTileSize = 1 << (log4Points - log4Samples);
+    auto samples = std::make_shared<std::vector<Point2f>>(size_t(pixelTileSize * pixelTileSize * samplesPerPixel));
+    std::vector<int> stored(size_t(pixelTileSize * pixelTileSize), 0);
+    for (int i = 0; i < kPMJ02bnSamples; ++i) {
+        Point2<double> p = GetPMJ02BNSample(0, i);
+        double x = p.x * pixelTileSize, y = p.y * pixelTileSize;
+        int pixelOffset = int(x) + int(y) * pixelTileSize;
+        if (stored[size_t(pixelOffset)] == samplesPerPixel) continue;
+        (*samples)[size_t(pixelOffset * samplesPerPixel + stored[size_t(pixelOffset)]++)] =
+            Point2f(std::min(Float(x - std::floor(x)), OneMinusEpsilon),
+                    std::min(Float(y - std::floor(y)), OneMinusEpsilon));
+    }
+    pixelSamples = std::move(samples);
+}
+
+std::string PMJ02BNSampler::ToString() const {
+    return fmt::format("[ PMJ02BNSampler samplesPerPixel: {} pixelTileSize: {} seed: {} ]", samplesPerPixel,
+                       pixelTileSize, seed);
+}
+
 ZSobolSampler::ZSobolSampler(int samplesPerPixel, Point2i fullResolution, RandomizeStrategy randomize,
                              int seed)
     : randomize(randomize), seed(seed) {

@@ -1,5 +1,5 @@
 // Sample generators for the pixel integrals (pbrt-v4's samplers.h): independent, stratified,
-// Halton, Sobol', padded Sobol' and zsobol.
+// Halton, Sobol', padded Sobol', zsobol and pmj02bn.
 //
 // Every value is a pure function of (pixel, sample index, dimension, seed): StartPixelSample
 // resets the state, so an image does not depend on which thread renders which pixel, or in
@@ -8,9 +8,11 @@
 #pragma once
 
 #include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/bluenoise.h"
 #include "pbrt_ext/util/hash.h"
 #include "pbrt_ext/util/lowdiscrepancy.h"
 #include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/pmj02tables.h"
 #include "pbrt_ext/util/rng.h"
 #include "pbrt_ext/util/vecmath.h"
 
@@ -23,6 +25,7 @@
 #include <type_traits>
 #include <utility>
 #include <variant>
+#include <vector>
 
 namespace pbrt {
 
@@ -346,10 +349,69 @@ class PaddedSobolSampler {
     int sampleIndex = 0, dimension = 0;
 };
 
+// Progressive multi-jittered (0,2) points with blue noise (pbrt-v4's PMJ02BNSampler): dimension
+// pairs 2-11 each read one of the generated pmj02bn sets (util/pmj02tables.h) by sample index,
+// shifted per pixel by blue-noise textures (a Cranley-Patterson rotation, util/bluenoise.h);
+// later pairs read them at a hashed permutation of the index. The pixel samples tile the first
+// set over pixelTileSize^2 pixels, each pixel taking the points inside it, so neighbouring
+// pixels' samples are one net. 1D values are jittered strata in a permuted order.
+class PMJ02BNSampler {
+  public:
+    // Throws std::runtime_error for a non-positive count or one above kPMJ02bnSamples; warns
+    // when it is not a power of 4 (the pixel samples then are a subset of a net).
+    explicit PMJ02BNSampler(int samplesPerPixel, int seed = 0);
+
+    static constexpr const char *Name() { return "pmj02bn"; }
+    int SamplesPerPixel() const { return samplesPerPixel; }
+
+    void StartPixelSample(Point2i p, int index, int dim = 0) {
+        pixel = p;
+        sampleIndex = index;
+        dimension = std::max(2, dim);
+    }
+    Float Get1D() {
+        uint64_t hash = Hash(pixel, dimension, seed);
+        int stratum = PermutationElement(uint32_t(sampleIndex), uint32_t(samplesPerPixel), uint32_t(hash));
+        Float delta = BlueNoise(dimension, pixel);
+        ++dimension;
+        return std::min((stratum + delta) / samplesPerPixel, OneMinusEpsilon);
+    }
+    Point2f Get2D() {
+        int index = sampleIndex, set = dimension / 2;
+        if (set >= kPMJ02bnSets) {
+            uint64_t hash = Hash(pixel, dimension, seed);
+            index = PermutationElement(uint32_t(sampleIndex), uint32_t(samplesPerPixel), uint32_t(hash));
+        }
+        Point2<double> u = GetPMJ02BNSample(set, index);
+        Float x = WrapShift(u.x, BlueNoise(dimension, pixel)), y = WrapShift(u.y, BlueNoise(dimension + 1, pixel));
+        dimension += 2;
+        return {x, y};
+    }
+    Point2f GetPixel2D() const {
+        int px = pixel.x % pixelTileSize, py = pixel.y % pixelTileSize;
+        return (*pixelSamples)[size_t((px + py * pixelTileSize) * samplesPerPixel + sampleIndex)];
+    }
+
+    std::string ToString() const;
+
+  private:
+    // u + shift, modulo 1, kept below 1.
+    static Float WrapShift(double u, Float shift) {
+        Float v = Float(u) + shift;
+        if (v >= 1) v -= 1;
+        return std::min(v, OneMinusEpsilon);
+    }
+
+    int samplesPerPixel, seed, pixelTileSize;
+    std::shared_ptr<const std::vector<Point2f>> pixelSamples;  // shared by every thread's copy
+    Point2i pixel;
+    int sampleIndex = 0, dimension = 0;
+};
+
 // The closed set of samplers.
 class Sampler {
     using Variant = std::variant<IndependentSampler, StratifiedSampler, HaltonSampler, SobolSampler,
-                                 PaddedSobolSampler, ZSobolSampler>;
+                                 PaddedSobolSampler, ZSobolSampler, PMJ02BNSampler>;
 
   public:
     template <typename S>

@@ -58,6 +58,17 @@ RenderOverrides Quick() {
     return o;
 }
 
+// A scene whose first line is `Sampler <sampler>`, lit by a uniform environment.
+std::string WriteSamplerScene(const std::string &name, const std::string &sampler) {
+    return WriteScene(name, "Sampler " + sampler + R"(
+LookAt 0 0 5  0 0 0  0 1 0
+Camera "perspective"
+Film "rgb" "integer xresolution" 8 "integer yresolution" 8
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+)");
+}
+
 }  // namespace
 
 class ShippedScene : public testing::TestWithParam<const char *> {};
@@ -126,23 +137,29 @@ Shape "sphere"
 // --sampler replaces the scene's Sampler, keeping its count; the scene's other parameters, written
 // for its own sampler, are neither applied nor reported unused.
 TEST(SceneLoader, CommandLineSamplerOverridesTheFile) {
-    std::string file = WriteScene("sampler.pbrt", R"(Sampler "halton" "integer pixelsamples" 9
-    "string randomization" "owen"
-LookAt 0 0 5  0 0 0  0 1 0
-Camera "perspective"
-Film "rgb" "integer xresolution" 8 "integer yresolution" 8
-WorldBegin
-LightSource "infinite" "rgb L" [1 1 1]
-)");
+    std::string file = WriteSamplerScene("sampler.pbrt", R"("halton" "integer pixelsamples" 9
+    "string randomization" "owen")");
     RenderOverrides overrides;
     overrides.quiet = true;
     EXPECT_STREQ(LoadScene(file, overrides)->sampler.Name(), "halton");
-    for (const char *name : {"independent", "stratified", "sobol", "paddedsobol", "zsobol"}) {
+    for (const char *name : {"independent", "stratified", "sobol", "paddedsobol", "zsobol", "pmj02bn"}) {
         overrides.sampler = name;
         std::unique_ptr<Scene> scene = LoadScene(file, overrides);
         EXPECT_STREQ(scene->sampler.Name(), name);
         EXPECT_EQ(scene->sampler.SamplesPerPixel(), std::string(name) == "zsobol" ? 16 : 9) << name;
     }
+}
+
+// Every sampler pbrt-v4 scenes ask for is rendered as asked: no substitution warning.
+TEST(SceneLoader, PMJ02bnIsRenderedWithoutSubstitution) {
+    std::string file = WriteSamplerScene("pmj02bn.pbrt", R"("pmj02bn" "integer pixelsamples" 64)");
+    RenderOverrides overrides;
+    overrides.quiet = true;
+    int warnings = Log().warnings;
+    std::unique_ptr<Scene> scene = LoadScene(file, overrides);
+    EXPECT_EQ(Log().warnings, warnings);
+    EXPECT_STREQ(scene->sampler.Name(), "pmj02bn");
+    EXPECT_EQ(scene->sampler.SamplesPerPixel(), 64);
 }
 
 TEST(SceneLoader, CommandLineFabricSamplerOverridesTheFile) {
@@ -198,10 +215,7 @@ TEST(SceneLoaderErrors, BadSensorAndShutterAreReportedWhereWritten) {
 // Halton's prime bases have no fast Owen scramble (pbrt-v4 refuses it too); an unknown
 // randomization is an error where written, naming the ones the sampler has.
 TEST(SceneLoaderErrors, BadSamplerRandomizationIsReportedWhereWritten) {
-    auto scene = [](const std::string &name, const std::string &sampler) {
-        return WriteScene(name, "Sampler " + sampler + "\nLookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\n"
-                                "Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 8\nWorldBegin\n");
-    };
+    auto scene = WriteSamplerScene;
     std::string halton = scene("haltonfastowen.pbrt", R"("halton" "string randomization" "fastowen")");
     EXPECT_EQ(LoadError(halton), halton + ":1:18: error: unknown randomization \"fastowen\" for the halton "
                                           "sampler: expected none, permutedigits or owen");

@@ -9,21 +9,22 @@
 // on the number of threads.
 #include "pbrt_ext/cmd/rgb2spec_opt.h"
 
+#include "pbrt_ext/cmd/embeddedtable.h"
+
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <string>
-#include <system_error>
 #include <thread>
 #include <vector>
 
 namespace {
 
 using namespace pbrt::rgb2spec;
+namespace embedded = pbrt::embedded;
 
 constexpr const char *kUsage =
     "usage: rgb2spec_opt [--threads N] <output.cpp> <output.bin>\n"
@@ -31,32 +32,6 @@ constexpr const char *kUsage =
     "  <output.bin> (float[3][64][64][64][3], native byte order) and <output.cpp>, which defines\n"
     "  the layer brightnesses and embeds <output.bin> for RGBToSpectrumTable::sRGB().\n"
     "  --threads N  worker threads (default: the hardware's, %u here)\n";
-
-// Writes through a temporary file and renames it, so that an interrupted run leaves no output
-// that a later build would take for finished.
-bool WriteFile(const std::filesystem::path &path, const void *data, size_t size) {
-    std::filesystem::path tmp = path;
-    tmp += ".tmp";
-    std::error_code ec;
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out.write(static_cast<const char *>(data), std::streamsize(size))) return false;
-    }
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) std::filesystem::remove(tmp, ec);
-    return !ec;
-}
-
-// Quotes a path for the assembler's .incbin.
-std::string AssemblerString(const std::string &s) {
-    std::string q = "\\\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\') q += "\\\\\\";
-        q += c;
-    }
-    return q + "\\\"";
-}
 
 std::string GeneratedSource(const std::filesystem::path &bin, const std::vector<float> &zNodes,
                             size_t bytes) {
@@ -73,15 +48,8 @@ std::string GeneratedSource(const std::filesystem::path &bin, const std::vector<
         s += buf;
     }
     s += "};\n}  // namespace pbrt\n\n"
-         "// float[3][64][64][64][3] (c0, c1, c2 per node), " + std::to_string(bytes) + " bytes.\n"
-         "asm(\".pushsection .rodata\\n\"\n"
-         "    \".balign 64\\n\"\n"
-         "    \".globl pbrt_ext_sRGBToSpectrumTable_Data\\n\"\n"
-         "    \".type pbrt_ext_sRGBToSpectrumTable_Data, %object\\n\"\n"
-         "    \"pbrt_ext_sRGBToSpectrumTable_Data:\\n\"\n"
-         "    \".incbin " + AssemblerString(std::filesystem::absolute(bin).string()) + "\\n\"\n"
-         "    \".size pbrt_ext_sRGBToSpectrumTable_Data, " + std::to_string(bytes) + "\\n\"\n"
-         "    \".popsection\\n\");\n";
+         "// float[3][64][64][64][3] (c0, c1, c2 per node), " + std::to_string(bytes) + " bytes.\n" +
+         embedded::IncbinDefinition("pbrt_ext_sRGBToSpectrumTable_Data", bin, bytes);
     return s;
 }
 
@@ -141,8 +109,8 @@ int main(int argc, char **argv) {
     size_t bytes = table.size() * sizeof(float);
     std::string source = GeneratedSource(binPath, zNodes, bytes);
     // The .bin first: the source names it.
-    if (!WriteFile(binPath, table.data(), bytes) ||
-        !WriteFile(cppPath, source.data(), source.size())) {
+    if (!embedded::WriteFile(binPath, table.data(), bytes) ||
+        !embedded::WriteFile(cppPath, source.data(), source.size())) {
         std::fprintf(stderr, "rgb2spec_opt: cannot write %s and %s\n", binPath.c_str(),
                      cppPath.c_str());
         return 1;
