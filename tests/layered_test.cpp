@@ -167,6 +167,22 @@ TEST(HenyeyGreenstein, IsNormalizedAndSampledExactly) {
     }
 }
 
+// pbrt-v4 clamps g to [-0.99, 0.99]: the scene's g = 1 (or beyond) scatters as g = 0.99
+// instead of losing the energy (0 at |g| = 1) or going negative (|g| > 1).
+TEST(HenyeyGreenstein, ClampsGAsPbrtV4) {
+    Vector3f wo = Normalize(Vector3f(0.3f, -0.5f, 0.7f)), wi = Normalize(Vector3f(-0.2f, 0.6f, -0.6f));
+    for (Float g : {1.f, 1.5f, -1.f, -3.f}) {
+        Float clamped = g > 0 ? 0.99f : -0.99f;
+        EXPECT_EQ(HenyeyGreenstein(Dot(wo, wi), g), HenyeyGreenstein(Dot(wo, wi), clamped)) << g;
+        Float pdf, clampedPdf;
+        Vector3f w = SampleHenyeyGreenstein(wo, g, Point2f(0.3f, 0.7f), &pdf);
+        Vector3f wClamped = SampleHenyeyGreenstein(wo, clamped, Point2f(0.3f, 0.7f), &clampedPdf);
+        EXPECT_EQ(w, wClamped) << g;
+        EXPECT_EQ(pdf, clampedPdf) << g;
+        EXPECT_GT(pdf, 0) << g;
+    }
+}
+
 TEST(HenyeyGreenstein, MeanCosineIsMinusG) {
     // wo and wi both point away from the scattering point: forward scattering (g > 0)
     // sends wi along -wo, so the mean of Dot(wo, wi) is -g.

@@ -300,11 +300,9 @@ PBRT_CPU_GPU SampledSpectrum LayeredBxDF<TopBxDF, BottomBxDF, twoSided>::f(
                 if (0 < zp && zp < thickness) {
                     // A scattering event inside the slab: connect it to wi through the
                     // exit along the presampled wis (MIS against phase sampling) ...
-                    Float wt = 1;
-                    if (!exitSpecular)
-                        wt = PowerHeuristic(1, wis->pdf, 1, Phase(-w, -wis->wi));
-                    f += beta * albedo * Phase(-w, -wis->wi) * wt * Tr(zp - exitZ, wis->wi) *
-                         wis->f / wis->pdf;
+                    Float phase = Phase(-w, -wis->wi);
+                    Float wt = exitSpecular ? 1 : PowerHeuristic(1, wis->pdf, 1, phase);
+                    f += beta * albedo * phase * wt * Tr(zp - exitZ, wis->wi) * wis->f / wis->pdf;
 
                     // ... then continue in a direction drawn from the phase function, whose
                     // weight p / pdf is one.

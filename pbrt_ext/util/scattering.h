@@ -256,8 +256,13 @@ class TrowbridgeReitzDistribution {
 
 // The Henyey-Greenstein phase function. cosTheta is the cosine between wo and wi, which
 // both point away from the scattering point, so forward scattering (g > 0) peaks at
-// cosTheta = -1, as in pbrt-v4. Normalized over the sphere.
+// cosTheta = -1, as in pbrt-v4. Normalized over the sphere. g is clamped to [-0.99, 0.99],
+// as pbrt-v4 clamps it: at |g| = 1 the function is a delta (and 0 here), beyond it negative.
+PBRT_CPU_GPU inline Float ClampHenyeyGreensteinG(Float g) {
+    return Clamp(g, -.99f, .99f);
+}
 PBRT_CPU_GPU inline Float HenyeyGreenstein(Float cosTheta, Float g) {
+    g = ClampHenyeyGreensteinG(g);
     Float denom = 1 + Sqr(g) + 2 * g * cosTheta;
     return Inv4Pi * (1 - Sqr(g)) / (denom * SafeSqrt(denom));
 }
@@ -267,6 +272,7 @@ PBRT_CPU_GPU inline Float HenyeyGreenstein(Float cosTheta, Float g) {
 // near g = 0 that inversion divides by g, so the isotropic case is sampled directly.
 PBRT_CPU_GPU inline Vector3f SampleHenyeyGreenstein(Vector3f wo, Float g, Point2f u,
                                                     Float *pdf) {
+    g = ClampHenyeyGreensteinG(g);
     Float mu;
     if (std::abs(g) < 1e-3f)
         mu = 1 - 2 * u[0];
