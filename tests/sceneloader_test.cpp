@@ -95,7 +95,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                          "convergence/cylinder_r0.1.pbrt",
                                          "convergence/cylinder_r0.3.pbrt",
                                          "convergence/cylinder_r0.6.pbrt",
-                                         "convergence/cornell_fabric.pbrt"));
+                                         "convergence/cornell_fabric.pbrt",
+                                         "convergence/cornell_panel_light.pbrt"));
 
 TEST(SceneLoader, UnreferencedTexturesAndMaterialsAreNeverLoaded) {
     // The texture and the named material point at files that do not exist; nothing uses them.

@@ -25,6 +25,13 @@ using Vector3d = Vector3<double>;
 // v's component orthogonal to unit w, normalized.
 inline Vector3d Orthogonal(Vector3d v, Vector3d w) { return Normalize(GramSchmidt(v, w)); }
 inline double AngleBetween(Vector3d a, Vector3d b) { return std::atan2(Length(Cross(a, b)), Dot(a, b)); }
+// The sum of the angles a-b and c-d, each in [0, pi], with one atan2: the argument of the
+// product of (cos, sin) pairs, taken in [0, 2 pi).
+inline double SumOfAngles(Vector3d a, Vector3d b, Vector3d c, Vector3d d) {
+    double cos0 = Dot(a, b), sin0 = Length(Cross(a, b)), cos1 = Dot(c, d), sin1 = Length(Cross(c, d));
+    double angle = std::atan2(sin0 * cos1 + cos0 * sin1, cos0 * cos1 - sin0 * sin1);
+    return angle < 0 ? angle + 2 * Pi : angle;
+}
 
 // The solid angle of the spherical triangle with unit vertices a, b, c (Van Oosterom and
 // Strackee's formula: no cancellation for small triangles).
@@ -137,12 +144,12 @@ class SphericalRectangle {
         Vector3d v00{x0, y0, z0}, v01{x0, y1, z0}, v10{x1, y0, z0}, v11{x1, y1, z0};
         Vector3d n0 = Normalize(Cross(v00, v10)), n1 = Normalize(Cross(v10, v11));
         Vector3d n2 = Normalize(Cross(v11, v01)), n3 = Normalize(Cross(v01, v00));
-        double g0 = AngleBetween(-n0, n1), g1 = AngleBetween(-n1, n2),
-               g2 = AngleBetween(-n2, n3), g3 = AngleBetween(-n3, n0);
+        // Sample needs only the sums g0 + g1 and g2 + g3 of the four angles.
+        double g01 = SumOfAngles(-n0, n1, -n1, n2), g23 = SumOfAngles(-n2, n3, -n3, n0);
         b0 = n0.z;
         b1 = n2.z;
-        k = 2 * Pi - g2 - g3;
-        area = std::max(0.0, g0 + g1 - k);
+        k = 2 * Pi - g23;
+        area = std::max(0.0, g01 - k);
     }
 
     // The solid angle, 0 for a degenerate rectangle or a p in its plane.
