@@ -188,14 +188,16 @@ PBRT_CPU_GPU inline Float SobolSample(uint64_t a, int dimension, RandomizeStrate
 
 constexpr int kPrimeTableSize = 1000;
 
-// The first kPrimeTableSize primes (2 .. 7919), by trial division at compile time.
+// The first kPrimeTableSize primes (2 .. 7919), by trial division at compile time: odd
+// candidates only, each tested until its first divisor, which keeps the evaluation well inside
+// clang's constexpr step limit (about a million steps; testing every divisor exceeded it).
 constexpr std::array<int, kPrimeTableSize> MakePrimes() {
-    std::array<int, kPrimeTableSize> primes{};
-    int n = 0;
-    for (int candidate = 2; n < kPrimeTableSize; ++candidate) {
+    std::array<int, kPrimeTableSize> primes{2};
+    int n = 1;
+    for (int candidate = 3; n < kPrimeTableSize; candidate += 2) {
         bool prime = true;
-        for (int i = 0; i < n && primes[i] * primes[i] <= candidate; ++i)
-            if (candidate % primes[i] == 0) prime = false;
+        for (int i = 1; prime && i < n && primes[i] * primes[i] <= candidate; ++i)
+            prime = candidate % primes[i] != 0;
         if (prime) primes[n++] = candidate;
     }
     return primes;
