@@ -1,7 +1,8 @@
-// The image target: our wrapper Image::Read, which decodes through OpenImageIO. Only the wrapper
-// (and whatever of the project it calls) is instrumented for coverage; OpenImageIO and the codec
-// libraries are Debian's builds, so the fuzzer steers by our code alone and reports their crashes
-// without guidance into them.
+// The image target: Image::Read, which decodes PNG through libpng (util/pngfile.cpp), EXR through
+// OpenEXR (util/exrfile.cpp) and the other formats through the OpenImageIO module
+// (util/imagecodec.h). Only the project's code is instrumented for coverage; libpng, OpenEXR,
+// OpenImageIO and the codec libraries are Debian's builds, so the fuzzer steers by our code alone
+// and reports their crashes without guidance into them.
 #include "fuzz/finding.h"
 #include "fuzz/fuzz_targets.h"
 #include "fuzz/scratch.h"
