@@ -49,7 +49,8 @@ constexpr const char *kFabricSamplers[] = {"uniform", "cosine", "paper", "best"}
 constexpr const char *kLightSamplerScenes[] = {"veach_mis", "cylinder_r0.1"};
 constexpr const char *kLightSamplers[] = {"bvh", "power", "uniform"};
 constexpr const char *kSamplerScenes[] = {"veach_mis", "cylinder_env_r0.1"};
-constexpr const char *kSamplers[] = {"independent", "stratified", "halton", "sobol", "paddedsobol", "zsobol"};
+constexpr const char *kSamplers[] = {"independent", "stratified", "halton", "sobol",
+                                     "paddedsobol", "zsobol", "pmj02bn"};
 constexpr const char *kStrategies[] = {"bsdf", "light", "mis"};
 constexpr int kSweepSpp[] = {4, 16, 64, 256};
 // Its own noise adds about 1/16 of the best sweep image's error at 256 spp; the plot script
