@@ -22,6 +22,11 @@ void FuzzParser(std::span<const uint8_t> data);
 void FuzzPly(std::span<const uint8_t> data);
 // An image file through Image::Read: the first byte picks the file extension, the rest is the file.
 void FuzzImage(std::span<const uint8_t> data);
+// PNG and EXR through Image::Read (first byte even: EXR, odd: PNG; the rest is the file, its
+// signature restored), the formats the project decodes itself (util/pngfile.cpp,
+// util/exrfile.cpp): without OpenImageIO's plugins, many times the inputs per second of the image
+// target.
+void FuzzPngExr(std::span<const uint8_t> data);
 // FabricBxDF built from fabric-material parameters, evaluated and sampled at one pair of
 // directions, with its invariants asserted (layout in fabric_target.cpp).
 void FuzzFabric(std::span<const uint8_t> data);
@@ -35,7 +40,7 @@ struct FuzzTarget {
 
 // Every target, in the order scripts/fuzz --list prints them.
 inline constexpr FuzzTarget kFuzzTargets[] = {
-    {"parser", FuzzParser}, {"ply", FuzzPly},     {"image", FuzzImage},
+    {"parser", FuzzParser}, {"ply", FuzzPly},     {"image", FuzzImage}, {"pngexr", FuzzPngExr},
     {"fabric", FuzzFabric}, {"scene", FuzzScene}};
 
 }  // namespace pbrt::fuzz
