@@ -76,9 +76,12 @@ class Generator {
         for (int a = 0; a <= m; ++a) occupied[size_t(a)][CellIndex(a, X, Y)] = 1;
         grid[GridCell(points[i])].push_back(i);
     }
+    // The grid column (k = 0) or row (k = 1) of p.
+    int GridCoordinate(const FixedPoint2 &p, int k) const {
+        return gridLog2 == 0 ? 0 : int(p[size_t(k)] >> (32 - gridLog2));
+    }
     size_t GridCell(const FixedPoint2 &p) const {
-        if (gridLog2 == 0) return 0;
-        return (size_t(p[1] >> (32 - gridLog2)) << gridLog2) | (p[0] >> (32 - gridLog2));
+        return (size_t(GridCoordinate(p, 1)) << gridLog2) | size_t(GridCoordinate(p, 0));
     }
 
     void Place(const FixedPoint2 &p) {
@@ -118,7 +121,7 @@ class Generator {
     // The rows below prefix `prefix` (its top j bits of Y) whose cells are free in the shapes
     // with j or more row bits; a random branch first.
     std::optional<uint32_t> FreeRow(uint32_t X, int j, uint32_t prefix) {
-        if (j > 0 && occupied[size_t(m - j)][(size_t(prefix) << (m - j)) | (X >> j)]) return {};
+        if (j > 0 && occupied[size_t(m - j)][CellIndex(m - j, X, prefix << (m - j))]) return {};
         if (j == m) return prefix;
         uint32_t first = rng.Uniform<uint32_t>() & 1;
         for (uint32_t bit : {first, first ^ 1})
@@ -137,8 +140,7 @@ class Generator {
     // 5 x 5 cells around p's is at least 2 cells away.
     double NearestSquaredDistance(const FixedPoint2 &p) const {
         int side = 1 << gridLog2;
-        int cx = gridLog2 == 0 ? 0 : int(p[0] >> (32 - gridLog2));
-        int cy = gridLog2 == 0 ? 0 : int(p[1] >> (32 - gridLog2));
+        int cx = GridCoordinate(p, 0), cy = GridCoordinate(p, 1);
         int lo = side >= 5 ? -2 : 0, hi = side >= 5 ? 2 : side - 1;  // a small grid: every cell once
         double best = 2;
         for (int dy = lo; dy <= hi; ++dy)
