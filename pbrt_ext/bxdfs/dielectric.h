@@ -112,6 +112,18 @@ class DielectricBxDF {
 
     PBRT_CPU_GPU pstd::optional<HalfVector> FindHalfVector(Vector3f wo, Vector3f wi) const;
 
+    // What f() and PDF() both need at a pair of directions, computed once when Sample_f()
+    // needs both: the half vector, its Fresnel reflectance and its microfacet density.
+    struct Microfacet {
+        HalfVector h;
+        Float F, D;
+    };
+    PBRT_CPU_GPU pstd::optional<Microfacet> FindMicrofacet(Vector3f wo, Vector3f wi) const;
+    PBRT_CPU_GPU Float FValue(Vector3f wo, Vector3f wi, TransportMode mode,
+                              const Microfacet &m) const;
+    PBRT_CPU_GPU Float PDFValue(Vector3f wo, Vector3f wi, BxDFReflTransFlags sampleFlags,
+                                const Microfacet &m) const;
+
     PBRT_CPU_GPU pstd::optional<BSDFSample> SampleSmooth(Vector3f wo, Float uc,
                                                          TransportMode mode,
                                                          BxDFReflTransFlags sampleFlags) const;
@@ -138,43 +150,57 @@ PBRT_CPU_GPU inline pstd::optional<DielectricBxDF::HalfVector> DielectricBxDF::F
     return HalfVector{wm, etap, reflect};
 }
 
+PBRT_CPU_GPU inline pstd::optional<DielectricBxDF::Microfacet> DielectricBxDF::FindMicrofacet(
+    Vector3f wo, Vector3f wi) const {
+    pstd::optional<HalfVector> h = FindHalfVector(wo, wi);
+    if (!h)
+        return {};
+    return Microfacet{*h, FrDielectric(Dot(wo, h->wm), eta), mfDistrib.D(h->wm)};
+}
+
+PBRT_CPU_GPU inline Float DielectricBxDF::FValue(Vector3f wo, Vector3f wi, TransportMode mode,
+                                                 const Microfacet &m) const {
+    Float DG = m.D * mfDistrib.G(wo, wi);
+    if (m.h.reflect)
+        return DG * m.F / std::abs(4 * CosTheta(wi) * CosTheta(wo));
+    Float denom =
+        Sqr(Dot(wi, m.h.wm) + Dot(wo, m.h.wm) / m.h.etap) * CosTheta(wi) * CosTheta(wo);
+    Float ft = DG * (1 - m.F) * std::abs(Dot(wi, m.h.wm) * Dot(wo, m.h.wm) / denom);
+    // Radiance is compressed into the smaller solid angle of the denser side.
+    if (mode == TransportMode::Radiance)
+        ft /= Sqr(m.h.etap);
+    return ft;
+}
+
+PBRT_CPU_GPU inline Float DielectricBxDF::PDFValue(Vector3f wo, Vector3f wi,
+                                                   BxDFReflTransFlags sampleFlags,
+                                                   const Microfacet &m) const {
+    Float prReflect = ReflectionProbability(m.F, sampleFlags);
+    if (prReflect < 0)
+        return 0;
+    Float pdf_wm = mfDistrib.PDF(wo, m.h.wm, m.D);
+    if (m.h.reflect)
+        // Jacobian of the reflection about wm: d wm / d wi = 1 / (4 |wo . wm|).
+        return pdf_wm / (4 * AbsDot(wo, m.h.wm)) * prReflect;
+    // Jacobian of refraction through wm (Walter et al., Eq. 17).
+    Float dwm_dwi = AbsDot(wi, m.h.wm) / Sqr(Dot(wi, m.h.wm) + Dot(wo, m.h.wm) / m.h.etap);
+    return pdf_wm * dwm_dwi * (1 - prReflect);
+}
+
 PBRT_CPU_GPU inline SampledSpectrum DielectricBxDF::f(Vector3f wo, Vector3f wi,
                                                       TransportMode mode) const {
     if (IsSmooth())
         return SampledSpectrum(0.f);
-    pstd::optional<HalfVector> h = FindHalfVector(wo, wi);
-    if (!h)
-        return SampledSpectrum(0.f);
-    Float F = FrDielectric(Dot(wo, h->wm), eta);
-    Float DG = mfDistrib.D(h->wm) * mfDistrib.G(wo, wi);
-    if (h->reflect)
-        return SampledSpectrum(DG * F / std::abs(4 * CosTheta(wi) * CosTheta(wo)));
-    Float denom = Sqr(Dot(wi, h->wm) + Dot(wo, h->wm) / h->etap) * CosTheta(wi) * CosTheta(wo);
-    Float ft = DG * (1 - F) * std::abs(Dot(wi, h->wm) * Dot(wo, h->wm) / denom);
-    // Radiance is compressed into the smaller solid angle of the denser side.
-    if (mode == TransportMode::Radiance)
-        ft /= Sqr(h->etap);
-    return SampledSpectrum(ft);
+    pstd::optional<Microfacet> m = FindMicrofacet(wo, wi);
+    return SampledSpectrum(m ? FValue(wo, wi, mode, *m) : 0);
 }
 
 PBRT_CPU_GPU inline Float DielectricBxDF::PDF(Vector3f wo, Vector3f wi, TransportMode /*mode*/,
                                               BxDFReflTransFlags sampleFlags) const {
     if (IsSmooth())
         return 0;
-    pstd::optional<HalfVector> h = FindHalfVector(wo, wi);
-    if (!h)
-        return 0;
-    Float prReflect =
-        ReflectionProbability(FrDielectric(Dot(wo, h->wm), eta), sampleFlags);
-    if (prReflect < 0)
-        return 0;
-    Float pdf_wm = mfDistrib.PDF(wo, h->wm);
-    if (h->reflect)
-        // Jacobian of the reflection about wm: d wm / d wi = 1 / (4 |wo . wm|).
-        return pdf_wm / (4 * AbsDot(wo, h->wm)) * prReflect;
-    // Jacobian of refraction through wm (Walter et al., Eq. 17).
-    Float dwm_dwi = AbsDot(wi, h->wm) / Sqr(Dot(wi, h->wm) + Dot(wo, h->wm) / h->etap);
-    return pdf_wm * dwm_dwi * (1 - prReflect);
+    pstd::optional<Microfacet> m = FindMicrofacet(wo, wi);
+    return m ? PDFValue(wo, wi, sampleFlags, *m) : 0;
 }
 
 PBRT_CPU_GPU inline pstd::optional<BSDFSample> DielectricBxDF::SampleSmooth(
@@ -211,8 +237,15 @@ PBRT_CPU_GPU inline pstd::optional<BSDFSample> DielectricBxDF::Sample_f(
         return SampleSmooth(wo, uc, mode, sampleFlags);
 
     Vector3f wm = mfDistrib.Sample_wm(wo, u);
-    Float prReflect =
-        ReflectionProbability(FrDielectric(Dot(wo, wm), eta), sampleFlags);
+    // Restricted to one side, the choice needs no Fresnel term: total internal reflection
+    // makes Refract() fail, and PDFValue() below weighs the side actually taken.
+    Float prReflect;
+    if (sampleFlags == BxDFReflTransFlags::Reflection)
+        prReflect = 1;
+    else if (sampleFlags == BxDFReflTransFlags::Transmission)
+        prReflect = 0;
+    else
+        prReflect = ReflectionProbability(FrDielectric(Dot(wo, wm), eta), sampleFlags);
     if (prReflect < 0)
         return {};
     Vector3f wi;
@@ -230,10 +263,11 @@ PBRT_CPU_GPU inline pstd::optional<BSDFSample> DielectricBxDF::Sample_f(
         if (!Refract(wo, Normal3f(wm), eta, &etap, &wi) || SameHemisphere(wo, wi) || wi.z == 0)
             return {};
     }
-    Float pdf = PDF(wo, wi, mode, sampleFlags);
+    pstd::optional<Microfacet> m = FindMicrofacet(wo, wi);
+    Float pdf = m ? PDFValue(wo, wi, sampleFlags, *m) : 0;
     if (pdf == 0)
         return {};
-    return BSDFSample(f(wo, wi, mode), wi, pdf, flags, etap);
+    return BSDFSample(SampledSpectrum(FValue(wo, wi, mode, *m)), wi, pdf, flags, etap);
 }
 
 }  // namespace pbrt
