@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -209,7 +210,13 @@ class HaltonSampler {
     int SamplesPerPixel() const { return samplesPerPixel; }
 
     void StartPixelSample(Point2i p, int sampleIndex, int dim = 0) {
-        haltonIndex = FirstIndexInPixel(p) + int64_t(sampleIndex) * sampleStride;
+        // A pixel's samples are drawn one after another: its first index (two inverse
+        // radical inverses and 64-bit divisions) is computed once.
+        if (p != indexedPixel) {
+            indexedPixel = p;
+            pixelFirstIndex = FirstIndexInPixel(p);
+        }
+        haltonIndex = pixelFirstIndex + int64_t(sampleIndex) * sampleStride;
         dimension = std::max(2, dim);
     }
     Float Get1D() { return SampleDimension(NextDimensions(dimension, 1, kPrimeTableSize)); }
@@ -249,6 +256,8 @@ class HaltonSampler {
     int64_t multInverse[2];
     int64_t haltonIndex = 0;
     int dimension = 0;
+    Point2i indexedPixel{std::numeric_limits<int>::min(), std::numeric_limits<int>::min()};
+    int64_t pixelFirstIndex = 0;
 };
 
 // Global Sobol' points (pbrt-v4's SobolSampler): the first two dimensions span the image,

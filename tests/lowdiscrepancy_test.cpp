@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <set>
 #include <vector>
 
@@ -104,6 +105,25 @@ TEST(LowDiscrepancy, PrimesAndRadicalInverse) {
             EXPECT_EQ(InverseRadicalInverse(reversed, base, n), uint64_t(i));
         }
     }
+}
+
+// The multiplication that replaces the radical inverses' divisions must give the exact
+// quotient for every prime and every 32-bit index: checked at the values where an inexact
+// reciprocal would fail first (multiples of b and their neighbours, near 2^32), and at 4096
+// random indices per prime (fixed seed).
+TEST(LowDiscrepancy, DivideByPrimeIsExact) {
+    std::mt19937 rng(7);
+    for (int i = 0; i < kPrimeTableSize; ++i) {
+        uint32_t b = uint32_t(kPrimes[size_t(i)]);
+        uint32_t top = UINT32_MAX - UINT32_MAX % b;  // the largest multiple of b
+        for (uint32_t a : {0u, 1u, b - 1, b, b + 1, top - 1, top, UINT32_MAX - 1, UINT32_MAX})
+            ASSERT_EQ(DivideByPrime(a, i), a / b) << "a = " << a << ", b = " << b;
+        for (int k = 0; k < 4096; ++k) {
+            uint32_t a = uint32_t(rng());
+            ASSERT_EQ(DivideByPrime(a, i), a / b) << "a = " << a << ", b = " << b;
+        }
+    }
+    EXPECT_EQ(DivideByPrime(uint64_t(1) << 40, 1), (uint64_t(1) << 40) / 3);
 }
 
 TEST(LowDiscrepancy, HaltonDigitPermutationsAreSeededPermutations) {

@@ -277,16 +277,37 @@ class HaltonDigitPermutations {
     std::vector<uint16_t> table;
 };
 
-// The first nDigits base-b digits of a, each replaced by permute(digitIndex, digit,
-// digitsSoFar), mirrored about the radix point. nDigits (RadicalInverseDigits) keeps the
-// reversed digits far inside 64 bits. Indices below 2^32 (nearly all) take 32-bit divisions,
-// which are several times faster than 64-bit ones on older x86 processors.
+// a / kPrimes[baseIndex] for any 32-bit a, without a division: the high 64 bits of a times
+// ceil(2^64 / b) (Lemire, Kaser and Kurz, "Faster Remainder by Direct Computation", 2019,
+// Theorem 1 with N = 32). Two 64-bit multiplications take a few cycles where a division
+// takes tens, and the permuted radical inverses divide once per digit.
+inline constexpr std::array<uint64_t, kPrimeTableSize> kPrimeReciprocals = [] {
+    std::array<uint64_t, kPrimeTableSize> reciprocals{};
+    for (size_t i = 0; i < reciprocals.size(); ++i)
+        reciprocals[i] = ~0ull / uint64_t(kPrimes[i]) + 1;
+    return reciprocals;
+}();
+inline uint32_t DivideByPrime(uint32_t a, int baseIndex) {
+    uint64_t m = kPrimeReciprocals[size_t(baseIndex)];
+    uint64_t low = (m & 0xffffffffu) * a, high = (m >> 32) * a;
+    return uint32_t((high + (low >> 32)) >> 32);
+}
+inline uint64_t DivideByPrime(uint64_t a, int baseIndex) {
+    return a / uint64_t(kPrimes[size_t(baseIndex)]);
+}
+
+// The first RadicalInverseDigits base-b digits of a (b = kPrimes[baseIndex]), each replaced
+// by permute(digitIndex, digit, digitsSoFar), mirrored about the radix point. That many
+// digits keeps the reversed digits far inside 64 bits. Indices below 2^32 (nearly all) take
+// the 32-bit DivideByPrime().
 template <typename UInt, typename Permute>
-inline Float PermutedRadicalInverse(UInt a, uint32_t base, int nDigits, Permute permute) {
+inline Float PermutedRadicalInverse(UInt a, int baseIndex, Permute permute) {
+    uint32_t base = uint32_t(kPrimes[size_t(baseIndex)]);
+    int nDigits = kRadicalInverseDigits[size_t(baseIndex)];
     uint64_t reversedDigits = 0;
     double invBase = 1.0 / double(base), invBaseM = 1;
     for (int digitIndex = 0; digitIndex < nDigits; ++digitIndex) {
-        UInt next = a / UInt(base);
+        UInt next = DivideByPrime(a, baseIndex);
         int digit = int(a - next * UInt(base));
         reversedDigits = reversedDigits * base + uint64_t(permute(digitIndex, digit, reversedDigits));
         invBaseM *= invBase;
@@ -295,15 +316,15 @@ inline Float PermutedRadicalInverse(UInt a, uint32_t base, int nDigits, Permute 
     return std::min(Float(double(reversedDigits) * invBaseM), OneMinusEpsilon);
 }
 template <typename Permute>
-inline Float PermutedRadicalInverse(uint64_t a, uint32_t base, int nDigits, Permute permute) {
-    if (a <= UINT32_MAX) return PermutedRadicalInverse(uint32_t(a), base, nDigits, permute);
-    return PermutedRadicalInverse<uint64_t>(a, base, nDigits, permute);
+inline Float PermutedRadicalInverse(uint64_t a, int baseIndex, Permute permute) {
+    if (a <= UINT32_MAX) return PermutedRadicalInverse(uint32_t(a), baseIndex, permute);
+    return PermutedRadicalInverse<uint64_t>(a, baseIndex, permute);
 }
 
 // The radical inverse with every digit position's digits permuted (Faure's scrambling, with
 // random permutations): each b^-k interval still holds the same points, in another order.
 inline Float ScrambledRadicalInverse(int baseIndex, uint64_t a, const HaltonDigitPermutations &perm) {
-    return PermutedRadicalInverse(a, uint32_t(kPrimes[baseIndex]), kRadicalInverseDigits[size_t(baseIndex)],
+    return PermutedRadicalInverse(a, baseIndex,
                                   [&](int digitIndex, int digit, uint64_t) {
                                       return perm.Permute(baseIndex, digitIndex, digit);
                                   });
@@ -313,7 +334,7 @@ inline Float ScrambledRadicalInverse(int baseIndex, uint64_t a, const HaltonDigi
 // it (the interval the point already lies in), so points are also shuffled inside intervals.
 inline Float OwenScrambledRadicalInverse(int baseIndex, uint64_t a, uint32_t hash) {
     uint32_t base = uint32_t(kPrimes[baseIndex]);
-    return PermutedRadicalInverse(a, base, kRadicalInverseDigits[size_t(baseIndex)],
+    return PermutedRadicalInverse(a, baseIndex,
                                   [&](int, int digit, uint64_t digitsSoFar) {
                                       uint32_t digitHash = uint32_t(MixBits(hash ^ digitsSoFar));
                                       return PermutationElement(uint32_t(digit), base, digitHash);
