@@ -204,20 +204,17 @@ class TrowbridgeReitzDistribution {
 
     // Samples a normal visible from w; it is always in the upper hemisphere (w below the
     // surface is mirrored first). Stretching by alpha turns the microsurface into a unit
-    // hemisphere, whose visible normals are uniform over its projected area as seen from
-    // wh: a disk with one half squashed by cos(theta_h), which is what the warp builds.
+    // hemisphere, whose visible normals are wh plus a point uniform on the spherical cap
+    // z >= -wh.z (Dupuy and Benyoub, "Sound and Fast Sampling of Visible GGX Normals with
+    // Spherical Caps", HPG 2023). pbrt-v4 warps a disk instead (Heitz 2018): the same
+    // distribution from another map of u, with two more square roots and normalizations.
     PBRT_CPU_GPU Vector3f Sample_wm(Vector3f w, Point2f u) const {
         Vector3f wh = Normalize(Vector3f(alpha_x * w.x, alpha_y * w.y, w.z));
         if (wh.z < 0)
             wh = -wh;
-        Vector3f T1 = (wh.z < 0.99999f) ? Normalize(Cross(Vector3f(0, 0, 1), wh))
-                                         : Vector3f(1, 0, 0);
-        Vector3f T2 = Cross(wh, T1);
-        Point2f p = SampleUniformDiskPolar(u);
-        Float h = std::sqrt(1 - Sqr(p.x));
-        p.y = Lerp((1 + wh.z) / 2, h, p.y);
-        Float pz = std::sqrt(std::max<Float>(0, 1 - Sqr(p.x) - Sqr(p.y)));
-        Vector3f nh = p.x * T1 + p.y * T2 + pz * wh;
+        Float z = (1 - u[1]) * (1 + wh.z) - wh.z;
+        Float sinTheta = SafeSqrt(1 - Sqr(z)), phi = 2 * Pi * u[0];
+        Vector3f nh = Vector3f(sinTheta * std::cos(phi), sinTheta * std::sin(phi), z) + wh;
         // Unstretch; the floor keeps grazing normals strictly in the upper hemisphere.
         return Normalize(
             Vector3f(alpha_x * nh.x, alpha_y * nh.y, std::max<Float>(1e-6f, nh.z)));
