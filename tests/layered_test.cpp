@@ -139,6 +139,49 @@ std::string CompareSampledWithEvaluated(const BxDF &bxdf, Vector3f wo, int nSamp
     return failures;
 }
 
+// Where Sample_f() sends its samples and its energy, inside a cone of half-angle 10 degrees
+// around wo's mirror direction (a coat of roughness 0.05 reflects nearly all of its
+// highlight into it), against the integral of PDF() over the same cone.
+struct HighlightShare {
+    double samples = 0;  // fraction of Sample_f's samples in the cone
+    double energy = 0;   // fraction of the sample weights f |cos| / pdf in the cone
+    double pdf = 0;      // integral of PDF() over the cone
+};
+
+template <typename BxDF>
+HighlightShare MeasureHighlight(const BxDF &bxdf, Vector3f wo) {
+    const Float cosCone = std::cos(Radians(10.f));
+    Vector3f mirror(-wo.x, -wo.y, wo.z);
+    constexpr int nSamples = 1 << 16;
+    HighlightShare share;
+    double totalWeight = 0;
+    RNG rng(17);
+    for (int i = 0; i < nSamples; ++i) {
+        Float uc = rng.Uniform<Float>(), u0 = rng.Uniform<Float>();
+        pstd::optional<BSDFSample> bs =
+            bxdf.Sample_f(wo, uc, Point2f(u0, rng.Uniform<Float>()), TransportMode::Radiance);
+        if (!bs)
+            continue;
+        double weight = bs->f.Average() * AbsCosTheta(bs->wi) / bs->pdf;
+        totalWeight += weight;
+        if (Dot(bs->wi, mirror) > cosCone) {
+            share.samples += 1.0 / nSamples;
+            share.energy += weight;
+        }
+    }
+    share.energy /= totalWeight;
+    // PDF() averaged over a stratified grid of directions uniform in the cone.
+    constexpr int n = 256;
+    Frame frame = Frame::FromZ(mirror);
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            Vector3f w = SampleUniformCone(Point2f((i + 0.5f) / n, (j + 0.5f) / n), cosCone);
+            share.pdf += bxdf.PDF(wo, frame.FromLocal(w), TransportMode::Radiance) /
+                         (UniformConePDF(cosCone) * n * n);
+        }
+    return share;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------
@@ -278,6 +321,8 @@ TEST(LayeredBxDF, SampledWeightsMatchEvaluation) {
     CoatedDiffuseBxDF smoothCoat = CoatedDiffuse(0, 0.7f, 0.01f, 0);
     CoatedConductorBxDF coatedMetal = CoatedConductor(0.2f, 0.3f, 0.01f, 0);
     CoatedConductorBxDF coatedMetalScattering = CoatedConductor(0.4f, 0.1f, 0.05f, 0.7f, -0.3f);
+    // A dark base, where Sample_f() reflects off the coat most often.
+    CoatedDiffuseBxDF darkBase = CoatedDiffuse(0.05f, 0.05f, 0.01f, 0);
     // Above the surface, oblique and grazing, and below it (the layers are two-sided).
     for (Vector3f wo : {Outgoing()[1], Outgoing()[2], -Outgoing()[1]}) {
         std::string r = CompareSampledWithEvaluated(roughCoatScattering, wo, 1 << 17, 1 << 16);
@@ -288,7 +333,37 @@ TEST(LayeredBxDF, SampledWeightsMatchEvaluation) {
         EXPECT_TRUE(r.empty()) << coatedMetal.ToString() << "\n" << r;
         r = CompareSampledWithEvaluated(coatedMetalScattering, wo, 1 << 17, 1 << 16);
         EXPECT_TRUE(r.empty()) << coatedMetalScattering.ToString() << "\n" << r;
+        r = CompareSampledWithEvaluated(darkBase, wo, 1 << 17, 1 << 16);
+        EXPECT_TRUE(r.empty()) << darkBase.ToString() << "\n" << r;
     }
+}
+
+TEST(LayeredBxDF, SamplesTheHighlightInProportionToItsEnergy) {
+    // Veach's MIS plates: a glossy coat over a dark base, where the coat's highlight is half
+    // of what the surface reflects. Choosing it by its Fresnel reflectance alone (pbrt-v4)
+    // puts 5 % of the samples there for 51-54 % of the energy (measured: 49-52 % of the
+    // samples here); the share of samples must be within a factor of 1.5 of the share of
+    // energy for a dark, a grey and a white base.
+    for (Float R : {0.05f, 0.5f, 0.95f})
+        for (Vector3f wo : {Outgoing()[0], Outgoing()[1]}) {
+            HighlightShare share = MeasureHighlight(CoatedDiffuse(0.05f, R, 0.01f, 0), wo);
+            EXPECT_GT(share.samples, share.energy / 1.5) << "R " << R << " wo.z " << wo.z;
+            EXPECT_LT(share.samples, share.energy * 1.5) << "R " << R << " wo.z " << wo.z;
+        }
+}
+
+TEST(LayeredBxDF, PdfMatchesTheSampledDensityOfTheHighlight) {
+    // The MIS weights of a highlight are as good as PDF() is there. Its coat reflection
+    // term is exact, so over the highlight's cone PDF() integrates to 0.9 (the share left
+    // by the uniform density) of Sample_f's fraction of samples, up to the estimated
+    // inner term (measured: 0.87-0.99). pbrt-v4's PDF() counts the coat's reflection as
+    // if it were always chosen: 12-15 times Sample_f's share here, which leaves light
+    // sampling almost no weight in the highlight.
+    for (Float R : {0.05f, 0.5f, 0.95f})
+        for (Vector3f wo : {Outgoing()[0], Outgoing()[1]}) {
+            HighlightShare share = MeasureHighlight(CoatedDiffuse(0.05f, R, 0.01f, 0), wo);
+            EXPECT_NEAR(share.pdf / share.samples, 0.9, 0.15) << "R " << R << " wo.z " << wo.z;
+        }
 }
 
 TEST(LayeredBxDF, SmoothCoatOverLambertianMatchesClosedForm) {
@@ -370,10 +445,12 @@ TEST(LayeredBxDF, FiniteNonNegativeEverywhere) {
 
 TEST(LayeredBxDF, PdfIsPositiveWhereverFIs) {
     // MIS needs a nonzero density wherever there is energy; the uniform share of PDF()
-    // guarantees it. The estimate is pbrt-v4's: its inner term is a density per solid
-    // angle inside the coat, which refraction compresses by about eta^2, so it integrates
-    // to one only for an index-matched coat and to 1.6 - 2.5 for eta = 1.5. MIS stays
-    // unbiased all the same, since both of its weights use this one PDF().
+    // guarantees it. Its inner term is pbrt-v4's estimate, a density per solid angle
+    // inside the coat, which refraction compresses by about eta^2; weighted by how often
+    // Sample_f() enters the layers, the whole integrates to one for an index-matched coat
+    // and to 0.96 - 1.56 for eta = 1.5 (pbrt-v4's, which also counts the coat's reflection
+    // as if always chosen: 1.6 - 2.5). MIS stays unbiased all the same, since both of its
+    // weights use this one PDF().
     auto integrate = [](const auto &bxdf, Vector3f wo, bool opaque) {
         double integral = 0;
         ForEachSphereQuadratureNode(32, 64, [&](Vector3f wi, double weight) {
@@ -391,8 +468,8 @@ TEST(LayeredBxDF, PdfIsPositiveWhereverFIs) {
     for (Vector3f wo : Outgoing()) {
         EXPECT_NEAR(integrate(CoatedDiffuse(0, 0.5f, 0.01f, 0, 0, 10, 1, 1), wo, true), 1, 1e-3);
         double coated = integrate(CoatedConductor(0.3f, 0.2f, 0.05f, 0.3f), wo, true);
-        EXPECT_GT(coated, 1);
-        EXPECT_LT(coated, 3);
+        EXPECT_GT(coated, 0.5);
+        EXPECT_LT(coated, 2);
     }
 }
 

@@ -76,6 +76,9 @@ class DielectricBxDF {
         return EstimateRho(*this, u1, uc, u2);
     }
 
+    // The relative index of refraction, inside over outside.
+    PBRT_CPU_GPU Float Eta() const { return eta; }
+
     // Widens a near-specular interface into a glossy one, so that light paths through
     // it can be connected (an index-matched one stays a pass-through).
     PBRT_CPU_GPU void Regularize() { mfDistrib.Regularize(); }
