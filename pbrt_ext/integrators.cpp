@@ -26,13 +26,13 @@ PathStrategy ParsePathStrategy(const std::string &name) {
     throw std::invalid_argument("unknown strategy \"" + name + "\": expected mis, bsdf or light");
 }
 
-Float PathIntegrator::BSDFHitWeight(bool lightSamplingApplied, Float pdfBSDF,
+Float PathIntegrator::BSDFHitWeight(bool lightSamplingApplied, BSDFDensity &pdfBSDF,
                                     Float pdfLight) const {
     if (!lightSamplingApplied)
         return 1;  // seen directly or through a specular bounce: no other estimator covers it
     switch (options.strategy) {
     case PathStrategy::MIS:
-        return PowerHeuristic(1, pdfBSDF, 1, pdfLight);
+        return PowerHeuristic(1, pdfBSDF.Get(), 1, pdfLight);
     case PathStrategy::BSDF:
         return 1;
     case PathStrategy::Light:
@@ -47,7 +47,8 @@ SampledSpectrum PathIntegrator::Li(Ray ray, SampledWavelengths &lambda, Sampler 
     // Whether next-event estimation covered the vertex the ray leaves from; false at the camera and
     // after specular bounces, where only the path itself can find the emitters.
     bool lightSampled = false, anyNonSpecularBounces = false;
-    Float pdfBSDF = 1, etaScale = 1;
+    Float etaScale = 1;
+    BSDFDensity pdfBSDF;
     LightSampleContext prevCtx;
     for (int depth = 0;; ++depth) {
         ++rays.closest;
@@ -102,7 +103,10 @@ SampledSpectrum PathIntegrator::Li(Ray ray, SampledWavelengths &lambda, Sampler 
         if (!bs)
             break;
         beta *= bs->f * AbsDot(bs->wi, Vector3f(si.shading.n)) / bs->pdf;
-        pdfBSDF = bs->pdfIsProportional ? bsdf.PDF(wo, bs->wi) : bs->pdf;
+        if (bs->pdfIsProportional)
+            pdfBSDF.Defer(bsdf, wo, bs->wi);
+        else
+            pdfBSDF.Set(bs->pdf);
         anyNonSpecularBounces |= !bs->IsSpecular();
         if (bs->IsTransmission())
             etaScale *= Sqr(bs->eta);

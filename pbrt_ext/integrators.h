@@ -9,6 +9,7 @@
 #include "pbrt_ext/samplers.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace pbrt {
@@ -47,6 +48,33 @@ class PathIntegrator {
     SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays) const;
 
   private:
+    // The BSDF density of the direction a path was sampled in, for the MIS weight of an emitter
+    // the path reaches. A proportional sample's (the layered BxDFs') is an estimate that costs
+    // random walks, so it is estimated only once an emitter asks for it: most bounces reach
+    // none (pbrt-v4 estimates it at every bounce).
+    class BSDFDensity {
+      public:
+        void Set(Float pdf) {
+            value = pdf;
+            pending.reset();
+        }
+        void Defer(const BSDF &bsdf, Vector3f wo, Vector3f wi) {
+            pending = bsdf;
+            pendingWo = wo;
+            pendingWi = wi;
+        }
+        Float Get() {
+            if (pending)
+                Set(pending->PDF(pendingWo, pendingWi));
+            return value;
+        }
+
+      private:
+        Float value = 1;
+        std::optional<BSDF> pending;
+        Vector3f pendingWo, pendingWi;
+    };
+
     // Direct lighting at an intersection by sampling one light: its contribution weighted for MIS
     // against BSDF sampling (or with weight 1 for strategy Light).
     SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf,
@@ -54,7 +82,7 @@ class PathIntegrator {
                              RayCounts &rays) const;
     // Weight of an emitter reached by BSDF sampling with density pdfBSDF, that light sampling
     // from prevCtx would have chosen with density pdfLight.
-    Float BSDFHitWeight(bool lightSamplingApplied, Float pdfBSDF, Float pdfLight) const;
+    Float BSDFHitWeight(bool lightSamplingApplied, BSDFDensity &pdfBSDF, Float pdfLight) const;
     // pbrt-v4 lets lights leave out directions that BSDF sampling covers well (a uniform
     // environment, the dim parts of an image) when MIS combines the two; alone, light sampling
     // must cover every direction.
