@@ -1,11 +1,14 @@
-// The PNG and EXR readers (libpng and OpenEXR directly) against OpenImageIO, which read these
-// files before: the same size, channels and float values (but color not premultiplied by alpha), for every kind of PNG libpng expands
-// (tests/data/png/make_pngs.py writes them from known samples) and for an EXR with a data window
-// off the origin, half and float channels, alpha and depth.
+// The PNG, EXR and stb_image readers against OpenImageIO, which read these files before: the
+// same size, channels and float values (but color not premultiplied by alpha), for every kind of
+// PNG libpng expands (tests/data/png/make_pngs.py writes them from known samples), for an EXR
+// with a data window off the origin, half and float channels, alpha and depth, and for TGA, BMP,
+// JPEG and HDR files that OpenImageIO writes; hand-written TGA (run-length encoded) and 16-bit
+// PSD files hold known samples (the PSD's read at 8 bits, as pbrt-v4 reads it).
 #include "pbrt_ext/util/exrfile.h"
 #include "pbrt_ext/util/imagecodec.h"
 #include "pbrt_ext/util/imageheaders.h"
 #include "pbrt_ext/util/pngfile.h"
+#include "pbrt_ext/util/stbfile.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -116,6 +119,93 @@ TEST(ImageFileReaders, ExrDecodesAsOpenImageIODecodesIt) {
     EXPECT_TRUE(ours.spec.isFloat);
     EXPECT_EQ(ByName(ours), ByName(oiio));
     EXPECT_EQ(ByName(ours)["Z"], depth);
+    fs::remove(path);
+}
+
+fs::path ScratchFile(const std::string &name) {
+    return fs::temp_directory_path() / ("pbrt_ext_imagefiles_" + std::to_string(getpid()) + "_" + name);
+}
+
+void WriteBytes(const fs::path &path, const std::string &bytes) {
+    std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+TEST(ImageFileReaders, StbFormatsDecodeAsOpenImageIODecodesThem) {
+    // 7 x 5 pixels whose 8-bit samples all differ.
+    const int width = 7, height = 5;
+    std::vector<uint8_t> rgb(size_t(width * height * 3));
+    for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = uint8_t((i * 37 + 11) % 256);
+    for (const char *name : {"rgb.tga", "rgb.bmp", "rgb.jpg", "rgb.hdr"}) {
+        fs::path path = ScratchFile(name);
+        GetImageCodec().Write8Bit(path.string(), path.string(), width, height, rgb.data());
+        ASSERT_TRUE(IsSTBImageFile(path.string())) << name;
+        Decoded ours = Decode(*OpenSTBFile(path.string()));
+        Decoded oiio = Decode(*GetImageCodec().Open(path.string()));
+        fs::remove(path);
+        EXPECT_EQ(ours.spec.width, width) << name;
+        EXPECT_EQ(ours.spec.height, height) << name;
+        ASSERT_EQ(ours.spec.nChannels, 3) << name;
+        std::string ext = fs::path(name).extension().string();
+        EXPECT_EQ(ours.spec.isFloat, ext == ".hdr") << name;
+        ASSERT_EQ(ours.pixels.size(), oiio.pixels.size()) << name;
+        for (size_t i = 0; i < ours.pixels.size(); ++i) {
+            if (ext == ".jpg")  // lossy: two decoders' inverse transforms round differently
+                ASSERT_NEAR(ours.pixels[i], oiio.pixels[i], 3.f / 255) << name << " sample " << i;
+            else if (ext == ".hdr")  // the same shared-exponent samples, decoded to float
+                ASSERT_NEAR(ours.pixels[i], oiio.pixels[i], 1e-6f * (1 + oiio.pixels[i])) << name << " sample " << i;
+            else  // lossless: the samples written
+                ASSERT_EQ(ours.pixels[i], float(rgb[i]) / 255) << name << " sample " << i;
+        }
+    }
+}
+
+TEST(ImageFileReaders, StbReadsRunLengthTgaAnd16BitPsd) {
+    // A 4 x 1 true-color TGA (type 10, run-length encoded, 24 bits, top-left origin): one run of
+    // three blue-green-red pixels (10, 20, 30), then one raw pixel (40, 50, 60).
+    std::string tga = std::string("\0\0\x0a", 3) + std::string(9, '\0') +
+                      std::string("\x04\0\x01\0\x18\x20", 6) + std::string("\x82\x1e\x14\x0a", 4) +
+                      std::string("\x00\x3c\x32\x28", 4);
+    fs::path tgaPath = ScratchFile("rle.tga");
+    WriteBytes(tgaPath, tga);
+    Decoded d = Decode(*OpenSTBFile(tgaPath.string()));
+    fs::remove(tgaPath);
+    ASSERT_EQ(d.spec.width, 4);
+    ASSERT_EQ(d.spec.nChannels, 3);
+    std::vector<float> expected;
+    for (int v : {10, 20, 30, 10, 20, 30, 10, 20, 30, 40, 50, 60}) expected.push_back(float(v) / 255);
+    EXPECT_EQ(d.pixels, expected);
+    // A 2 x 1 RGB PSD with 16-bit samples (big-endian planes, uncompressed): red 1007 and
+    // 65535, green 0 and 300, blue 20005 and 1.
+    std::string psd = std::string("8BPS\0\x01", 6) + std::string(6, '\0') +
+                      std::string("\0\x03\0\0\0\x01\0\0\0\x02\0\x10\0\x03", 14) +
+                      std::string(12, '\0') +  // color mode data, resources, layers: none
+                      std::string("\0\0", 2) +  // compression: raw
+                      std::string("\x03\xef\xff\xff\0\0\x01\x2c\x4e\x25\0\x01", 12);
+    fs::path psdPath = ScratchFile("rgb16.psd");
+    WriteBytes(psdPath, psd);
+    Decoded rgb16 = Decode(*OpenSTBFile(psdPath.string()));
+    fs::remove(psdPath);
+    ASSERT_EQ(rgb16.spec.nChannels, 4);  // stb_image gives every PSD an alpha channel, opaque
+    EXPECT_FALSE(rgb16.spec.isFloat);
+    // Each sample's high byte, as pbrt-v4 reads it (stbi_load).
+    std::vector<float> samples16;
+    for (int v : {1007, 0, 20005, 65535, 65535, 300, 1, 65535}) samples16.push_back(float(v >> 8) / 255);
+    EXPECT_EQ(rgb16.pixels, samples16);
+}
+
+TEST(ImageFileReaders, StbRefusesImpossibleHeaders) {
+    // An 18-byte TGA header that declares 60000 x 60000 pixels: no file of 18 bytes holds them,
+    // and stb_image would allocate 10 GB to find out.
+    fs::path path = ScratchFile("huge.tga");
+    WriteBytes(path, std::string("\0\0\x02", 3) + std::string(9, '\0') + std::string("\x60\xea\x60\xea\x18\x20", 6));
+    try {
+        OpenSTBFile(path.string());
+        ADD_FAILURE() << "no error";
+    } catch (const std::runtime_error &e) {
+        EXPECT_STREQ(e.what(), "the header declares 60000 x 60000 pixels, more than a file of 18 bytes can hold");
+    }
+    WriteBytes(path, "not an image");
+    EXPECT_THROW(OpenSTBFile(path.string()), std::runtime_error);
     fs::remove(path);
 }
 

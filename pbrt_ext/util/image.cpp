@@ -8,6 +8,7 @@
 #include "pbrt_ext/util/imageheaders.h"
 #include "pbrt_ext/util/pngfile.h"
 #include "pbrt_ext/util/resourcelimits.h"
+#include "pbrt_ext/util/stbfile.h"
 
 #include <ImfChannelList.h>
 #include <ImfDoubleAttribute.h>
@@ -56,12 +57,13 @@ std::array<int, 3> RGBChannelIndices(const ImageFileSpec &spec) {
 }
 
 // The reader for the file: libpng and OpenEXR for their formats (by signature, whatever the
-// extension), OpenImageIO's module for the rest.
+// extension), stb_image for the formats pbrt-v4 reads with it (by extension), OpenImageIO's
+// module for the rest.
 std::unique_ptr<ImageFileReader> OpenImageFile(const std::string &path) {
     switch (ImageFileFormatOf(path)) {
     case ImageFileFormat::PNG: return OpenPNGFile(path);
     case ImageFileFormat::EXR: return OpenEXRFile(path);
-    default: return GetImageCodec().Open(path);
+    default: return IsSTBImageFile(path) ? OpenSTBFile(path) : GetImageCodec().Open(path);
     }
 }
 

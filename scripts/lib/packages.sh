@@ -27,9 +27,10 @@ project_packages=(
   build-essential cmake ninja-build
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-matplotlib
-  # the renderer: ray tracing, images (PNG, EXR; OpenImageIO for the rest), threads, command line,
+  # the renderer: ray tracing, images (PNG, EXR; stb_image for TGA, JPEG and the other formats
+  # pbrt-v4 reads with it; OpenImageIO for the rest), threads, command line,
   # scene data, formatting,
   # Sobol' direction numbers (Boost.Random's table, header-only)
   libembree-dev libopenexr-dev libopenimageio-dev openimageio-tools libtbb-dev
-  libcli11-dev nlohmann-json3-dev libfmt-dev libboost-dev libpng-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev libboost-dev libpng-dev libstb-dev
 )
