@@ -1,6 +1,7 @@
 // The low-discrepancy building blocks: bit tricks, hashed permutations, scrambles, Sobol'
 // generator matrices (against Boost.Random's own Sobol' engine) and radical inverses.
 #include "pbrt_ext/util/lowdiscrepancy.h"
+#include "pbrt_ext/util/rng.h"
 
 #include <boost/random/sobol.hpp>
 #include <gtest/gtest.h>
@@ -145,6 +146,28 @@ TEST(LowDiscrepancy, HaltonDigitPermutationsAreSeededPermutations) {
         }
     }
     EXPECT_GT(differ, 0);
+}
+
+// The tabled bases' shortcut (the zero digits above an index's highest summed once) gives
+// the digit-by-digit loop's value to the bit: at indices around every power of the base,
+// where the number of digits changes, at random ones, and at 2^32 - 1.
+TEST(LowDiscrepancy, ScrambledRadicalInverseShortcutIsExact) {
+    HaltonDigitPermutations perm(5);
+    RNG rng(9);
+    for (int b = 0; b < HaltonDigitPermutations::kTabledBases; ++b) {
+        uint64_t base = uint64_t(kPrimes[size_t(b)]);
+        std::vector<uint32_t> indices = {0, 1, UINT32_MAX};
+        for (uint64_t power = base; power <= UINT32_MAX; power *= base)
+            for (uint64_t i : {power - 1, power, power + 1, 2 * power - 1})
+                if (i <= UINT32_MAX) indices.push_back(uint32_t(i));
+        for (int i = 0; i < 200; ++i) indices.push_back(rng.Uniform<uint32_t>() >> (i % 32));
+        for (uint32_t a : indices) {
+            Float digitByDigit = PermutedRadicalInverse<uint32_t>(
+                a, b, [&](int digitIndex, int digit, uint64_t) { return perm.Permute(b, digitIndex, digit); });
+            ASSERT_EQ(perm.RadicalInverse(b, a), digitByDigit) << "base " << base << " index " << a;
+            ASSERT_EQ(ScrambledRadicalInverse(b, uint64_t(a), perm), digitByDigit);
+        }
+    }
 }
 
 // Scrambling permutes digits, so the first b^k indices still put one point in each interval

@@ -67,6 +67,21 @@ HaltonDigitPermutations::HaltonDigitPermutations(uint32_t seed) : seed(seed) {
             for (int digit = 0; digit < kPrimes[size_t(b)]; ++digit)
                 table[size_t(offsets[size_t(b)] + digitIndex * kPrimes[size_t(b)] + digit)] =
                     uint16_t(Compute(b, digitIndex, digit));
+    // Each base's tails, from position n (nothing left) down to 0, and b^-n by the very
+    // multiplications PermutedRadicalInverse() makes.
+    for (int b = 0; b < kTabledBases; ++b) {
+        uint64_t base = uint64_t(kPrimes[size_t(b)]);
+        int nDigits = kRadicalInverseDigits[size_t(b)];
+        tailOffsets[size_t(b)] = int(tails.size());
+        tails.resize(tails.size() + size_t(nDigits) + 1);
+        Tail *tail = tails.data() + tailOffsets[size_t(b)];
+        tail[nDigits] = {1, 0};
+        for (int k = nDigits - 1; k >= 0; --k)
+            tail[k] = {tail[k + 1].shift * base, tail[k + 1].zeros + uint64_t(Permute(b, k, 0)) * tail[k + 1].shift};
+        double invBase = 1.0 / double(base), invBaseM = 1;
+        for (int k = 0; k < nDigits; ++k) invBaseM *= invBase;
+        invBasePowers[size_t(b)] = invBaseM;
+    }
 }
 
 }  // namespace pbrt

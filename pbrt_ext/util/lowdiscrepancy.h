@@ -271,10 +271,24 @@ class HaltonDigitPermutations {
         return PermutationElement(uint32_t(digit), uint32_t(base), uint32_t(Hash(base, digitIndex, seed)));
     }
 
+    // ScrambledRadicalInverse() of a tabled base and a 32-bit index, the same value to the bit,
+    // with a loop over the index's own digits only: the digits above its highest are zeros,
+    // whose permuted values are the same for every index and were summed once. That leaves
+    // about one digit in four or five to skip in every dimension of a path.
+    Float RadicalInverse(int baseIndex, uint32_t a) const;
+
   private:
+    // For digit position k of a base: b^(n - k), which shifts k reversed digits into place,
+    // and the sum of the permuted zeros of positions k to n - 1, in place (n its digit count).
+    struct Tail {
+        uint64_t shift, zeros;
+    };
+
     uint32_t seed;
-    std::array<int, kTabledBases> offsets;
+    std::array<int, kTabledBases> offsets, tailOffsets;
     std::vector<uint16_t> table;
+    std::vector<Tail> tails;
+    std::array<double, kTabledBases> invBasePowers;  // b^-n, as PermutedRadicalInverse() rounds it
 };
 
 // a / kPrimes[baseIndex] for any 32-bit a, without a division: the high 64 bits of a times
@@ -315,6 +329,22 @@ inline Float PermutedRadicalInverse(UInt a, int baseIndex, Permute permute) {
     }
     return std::min(Float(double(reversedDigits) * invBaseM), OneMinusEpsilon);
 }
+inline Float HaltonDigitPermutations::RadicalInverse(int baseIndex, uint32_t a) const {
+    uint32_t base = uint32_t(kPrimes[size_t(baseIndex)]);
+    int nDigits = kRadicalInverseDigits[size_t(baseIndex)];
+    const uint16_t *digits = table.data() + offsets[size_t(baseIndex)];
+    const Tail *tail = tails.data() + tailOffsets[size_t(baseIndex)];
+    uint64_t reversedDigits = 0;
+    int digitIndex = 0;
+    for (; a != 0 && digitIndex < nDigits; ++digitIndex, digits += base) {
+        uint32_t next = DivideByPrime(a, baseIndex);
+        reversedDigits = reversedDigits * base + digits[a - next * base];
+        a = next;
+    }
+    reversedDigits = reversedDigits * tail[digitIndex].shift + tail[digitIndex].zeros;
+    return std::min(Float(double(reversedDigits) * invBasePowers[size_t(baseIndex)]), OneMinusEpsilon);
+}
+
 template <typename Permute>
 inline Float PermutedRadicalInverse(uint64_t a, int baseIndex, Permute permute) {
     if (a <= UINT32_MAX) return PermutedRadicalInverse(uint32_t(a), baseIndex, permute);
@@ -324,6 +354,8 @@ inline Float PermutedRadicalInverse(uint64_t a, int baseIndex, Permute permute) 
 // The radical inverse with every digit position's digits permuted (Faure's scrambling, with
 // random permutations): each b^-k interval still holds the same points, in another order.
 inline Float ScrambledRadicalInverse(int baseIndex, uint64_t a, const HaltonDigitPermutations &perm) {
+    if (baseIndex < HaltonDigitPermutations::kTabledBases && a <= UINT32_MAX)
+        return perm.RadicalInverse(baseIndex, uint32_t(a));
     return PermutedRadicalInverse(a, baseIndex,
                                   [&](int digitIndex, int digit, uint64_t) {
                                       return perm.Permute(baseIndex, digitIndex, digit);
