@@ -27,6 +27,9 @@ void FuzzImage(std::span<const uint8_t> data);
 // util/exrfile.cpp): without OpenImageIO's plugins, many times the inputs per second of the image
 // target.
 void FuzzPngExr(std::span<const uint8_t> data);
+// The image target's inputs that stb_image decodes (util/stbfile.cpp: TGA, JPEG, BMP, PNM and
+// HDR among its extensions), and only those: also without OpenImageIO's plugins.
+void FuzzStb(std::span<const uint8_t> data);
 // FabricBxDF built from fabric-material parameters, evaluated and sampled at one pair of
 // directions, with its invariants asserted (layout in fabric_target.cpp).
 void FuzzFabric(std::span<const uint8_t> data);
@@ -41,6 +44,6 @@ struct FuzzTarget {
 // Every target, in the order scripts/fuzz --list prints them.
 inline constexpr FuzzTarget kFuzzTargets[] = {
     {"parser", FuzzParser}, {"ply", FuzzPly},     {"image", FuzzImage}, {"pngexr", FuzzPngExr},
-    {"fabric", FuzzFabric}, {"scene", FuzzScene}};
+    {"stb", FuzzStb},       {"fabric", FuzzFabric}, {"scene", FuzzScene}};
 
 }  // namespace pbrt::fuzz

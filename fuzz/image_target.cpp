@@ -1,6 +1,6 @@
 // The image target: Image::Read, which decodes PNG through libpng (util/pngfile.cpp), EXR through
-// OpenEXR (util/exrfile.cpp) and the other formats through the OpenImageIO module
-// (util/imagecodec.h). Only the project's code is instrumented for coverage; libpng, OpenEXR,
+// OpenEXR (util/exrfile.cpp), TGA, JPEG, BMP, PNM and HDR through stb_image (util/stbfile.cpp)
+// and the other formats through the OpenImageIO module (util/imagecodec.h). Only the project's code is instrumented for coverage; libpng, OpenEXR,
 // OpenImageIO and the codec libraries are Debian's builds, so the fuzzer steers by our code alone
 // and reports their crashes without guidance into them.
 #include "fuzz/finding.h"
@@ -9,6 +9,7 @@
 
 #include "pbrt_ext/util/image.h"
 #include "pbrt_ext/util/imagecodec.h"
+#include "pbrt_ext/util/stbfile.h"
 
 #include <algorithm>
 #include <iterator>
@@ -36,6 +37,16 @@ void FuzzImage(std::span<const uint8_t> data) {
     std::string extension = kExtensions[data[0] % std::size(kExtensions)];
     std::string path = WriteScratchFile("image", "input." + extension, data.subspan(1));
     ExpectReadOrRejection("image", [&] { Image::Read(path); });
+}
+
+void FuzzStb(std::span<const uint8_t> data) {
+    if (data.empty())
+        return;
+    std::string name = std::string("input.") + kExtensions[data[0] % std::size(kExtensions)];
+    if (!IsSTBImageFile(name))
+        return;
+    std::string path = WriteScratchFile("stb", name, data.subspan(1));
+    ExpectReadOrRejection("stb", [&] { Image::Read(path); });
 }
 
 void FuzzPngExr(std::span<const uint8_t> data) {

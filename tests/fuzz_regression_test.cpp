@@ -47,7 +47,7 @@ std::vector<SeedSource> Seeds(std::string_view target) {
         return {{kDataDir / "ply", ".ply"}, {kDataDir / "bad", ".ply"}};
     if (target == "scene")  // the loader's error cases; valid scenes render in other tests
         return {{kDataDir / "bad", ".pbrt"}};
-    if (target == "pngexr")  // the image target's seeds: their first byte's parity picks EXR or PNG
+    if (target == "pngexr" || target == "stb")  // the image target's seeds, read their own way
         return {{kSeedsDir / "image", ".seed"}, {kDataDir / "fuzz" / "image", ".seed"}};
     return {{kSeedsDir / target, ".seed"}};
 }
