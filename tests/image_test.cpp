@@ -1,4 +1,5 @@
-// Images: lossless EXR round trips with metadata, sRGB 8-bit files within quantization, pbrt-v4's
+// Images: lossless EXR round trips with metadata, sRGB 8-bit files within quantization and kept
+// as bytes, pbrt-v4's
 // wrap modes and lookups, and errors that name the file and leave no partial output.
 #include "pbrt_ext/util/image.h"
 
@@ -148,6 +149,46 @@ TEST_F(ImageFiles, PngRoundTripWithinQuantization) {
                 EXPECT_NEAR(back.GetChannel(Point2i(x, y), c), v, tol) << x << "," << y << "," << c;
             }
     EXPECT_EQ(back.GetChannel(Point2i(0, 0), 0), 0);
+}
+
+TEST_F(ImageFiles, EightBitFilesKeepTheirBytes) {
+    // An 8-bit file is kept as bytes, decoded through a table: exactly the values the file's
+    // samples (byte / 255 from the reader) give through the encoding; gray files and RGB files
+    // whose channels are equal everywhere take one byte a pixel. 16-bit files stay float.
+    const fs::path png = fs::path(PBRT_EXT_TEST_DATA_DIR) / "png";
+    for (ColorEncoding encoding : {ColorEncoding::SRGB(), ColorEncoding::Linear(), ColorEncoding::Gamma(2.2f)}) {
+        Image rgb = Image::Read((png / "rgb8.png").string(), encoding);
+        ASSERT_TRUE(rgb.Is8Bit());
+        // make_pngs.py's pixel (1, 1) is (40, 150, 225).
+        RGB p = rgb.GetChannels(Point2i(1, 1));
+        EXPECT_EQ(p.r, encoding.ToLinear(40.f / 255));
+        EXPECT_EQ(p.g, encoding.ToLinear(150.f / 255));
+        EXPECT_EQ(p.b, encoding.ToLinear(225.f / 255));
+        EXPECT_EQ(rgb.GetChannel(Point2i(1, 1), 2), p.b);
+    }
+    Image gray = Image::Read((png / "gray8.png").string());
+    ASSERT_TRUE(gray.Is8Bit());
+    RGB g = gray.GetChannels(Point2i(1, 0));
+    EXPECT_EQ(g.r, g.g);
+    EXPECT_EQ(g.g, g.b);
+    EXPECT_FALSE(Image::Read((png / "rgba16.png").string()).Is8Bit());
+
+    // An RGB file of equal channels reads as the gray image it is; writing a pixel makes the
+    // image float, and the other pixels keep their values.
+    Image image(Point2i(3, 2));
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 3; ++x)
+            for (int c = 0; c < 3; ++c) image.SetChannel(Point2i(x, y), c, 0.1f * Float(x + 3 * y));
+    image.Write(Path("gray.png"));
+    Image back = Image::Read(Path("gray.png"));
+    ASSERT_TRUE(back.Is8Bit());
+    RGB before = back.GetChannels(Point2i(2, 1));
+    EXPECT_EQ(before.r, before.b);
+    EXPECT_NEAR(before.g, 0.5f, 0.01f);
+    back.SetChannel(Point2i(0, 0), 1, 0.75f);
+    EXPECT_FALSE(back.Is8Bit());
+    EXPECT_EQ(back.GetChannel(Point2i(0, 0), 1), 0.75f);
+    EXPECT_EQ(back.GetChannels(Point2i(2, 1)).g, before.g);
 }
 
 TEST_F(ImageFiles, ReadErrorsNameTheFile) {

@@ -165,6 +165,12 @@ Image Image::Read(const std::string &path, ColorEncoding encoding) {
     // Integer pixels are display-encoded; float pixels are radiometric already.
     if (spec.isFloat) encoding = ColorEncoding::Linear();
     std::array<int, 3> channel = RGBChannelIndices(spec);
+    if (spec.is8Bit) {
+        Image image;
+        image.resolution = Point2i(spec.width, spec.height);
+        image.KeepBytes(raw, spec.nChannels, channel, encoding);
+        return image;
+    }
     Image image(Point2i(spec.width, spec.height));
     for (int y = 0; y < spec.height; ++y)
         for (int x = 0; x < spec.width; ++x)
@@ -173,6 +179,33 @@ Image Image::Read(const std::string &path, ColorEncoding encoding) {
                 image.SetChannel(Point2i(x, y), c, encoding.ToLinear(v));
             }
     return image;
+}
+
+void Image::KeepBytes(const std::vector<float> &raw, int nChannels, std::array<int, 3> channel,
+                      ColorEncoding encoding) {
+    // The table holds exactly what decoding each sample would give.
+    for (int b = 0; b < 256; ++b) toLinear[size_t(b)] = encoding.ToLinear(float(b) / 255);
+    size_t n = size_t(resolution.x) * size_t(resolution.y), stride = size_t(nChannels);
+    auto byteAt = [&](size_t i, int c) { return uint8_t(std::lround(raw[i * stride + size_t(channel[c])] * 255)); };
+    bool gray = channel[0] == channel[1] && channel[1] == channel[2];
+    for (size_t i = 0; i < n && gray; ++i) gray = byteAt(i, 0) == byteAt(i, 1) && byteAt(i, 1) == byteAt(i, 2);
+    byteChannels = gray ? 1 : 3;
+    bytes.resize(n * size_t(byteChannels));
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < byteChannels; ++c) bytes[i * size_t(byteChannels) + size_t(c)] = byteAt(i, c);
+}
+
+void Image::SetChannel(Point2i p, int c, Float value) {
+    if (Is8Bit()) {
+        pixels.resize(3 * size_t(resolution.x) * size_t(resolution.y));
+        for (int y = 0; y < resolution.y; ++y)
+            for (int x = 0; x < resolution.x; ++x) {
+                RGB rgb = GetChannels(Point2i(x, y));
+                for (int k = 0; k < 3; ++k) pixels[3 * PixelIndex(Point2i(x, y)) + size_t(k)] = rgb[k];
+            }
+        bytes.clear();
+    }
+    pixels[3 * PixelIndex(p) + size_t(c)] = value;
 }
 
 void Image::Write(const std::string &path, const ImageMetadata &metadata) const {
@@ -218,8 +251,9 @@ void Image::WriteEXR(const std::string &path, const std::string &tmpPath,
     for (const char *name : names) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
 
     // OpenEXR addresses the buffer by absolute data-window coordinates.
+    std::vector<Float> rgb = FloatRGB();
     size_t xStride = 3 * sizeof(float), yStride = xStride * size_t(resolution.x);
-    char *base = reinterpret_cast<char *>(const_cast<Float *>(pixels.data())) -
+    char *base = reinterpret_cast<char *>(rgb.data()) -
                  ptrdiff_t(dataBounds.pMin.x) * ptrdiff_t(xStride) -
                  ptrdiff_t(dataBounds.pMin.y) * ptrdiff_t(yStride);
     Imf::FrameBuffer frameBuffer;
@@ -234,10 +268,20 @@ void Image::WriteEXR(const std::string &path, const std::string &tmpPath,
     }
 }
 
+std::vector<Float> Image::FloatRGB() const {
+    if (!Is8Bit()) return pixels;
+    std::vector<Float> rgb(3 * size_t(resolution.x) * size_t(resolution.y));
+    for (int y = 0; y < resolution.y; ++y)
+        for (int x = 0; x < resolution.x; ++x)
+            for (int c = 0; c < 3; ++c) rgb[3 * PixelIndex(Point2i(x, y)) + size_t(c)] = GetChannel(Point2i(x, y), c);
+    return rgb;
+}
+
 void Image::Write8Bit(const std::string &path, const std::string &tmpPath) const {
-    std::vector<uint8_t> encoded(pixels.size());
-    for (size_t i = 0; i < pixels.size(); ++i) {
-        Float v = pixels[i] > 0 ? std::min<Float>(pixels[i], 1) : 0;  // NaN becomes 0 too
+    std::vector<Float> rgb = FloatRGB();
+    std::vector<uint8_t> encoded(rgb.size());
+    for (size_t i = 0; i < rgb.size(); ++i) {
+        Float v = rgb[i] > 0 ? std::min<Float>(rgb[i], 1) : 0;  // NaN becomes 0 too
         encoded[i] = uint8_t(std::lround(LinearToSRGB(v) * 255));
     }
     try {

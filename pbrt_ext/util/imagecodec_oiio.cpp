@@ -46,6 +46,7 @@ class OIIOReader : public ImageFileReader {
         spec.isFloat = s.format.basetype == OIIO::TypeDesc::FLOAT ||
                        s.format.basetype == OIIO::TypeDesc::HALF ||
                        s.format.basetype == OIIO::TypeDesc::DOUBLE;
+        spec.is8Bit = s.format.basetype == OIIO::TypeDesc::UINT8;
         spec.channelNames = s.channelnames;
         spec.decodeBufferBytes = DecoderBufferBytes(s);
     }

@@ -12,6 +12,7 @@ namespace pbrt {
 struct ImageFileSpec {
     int width = 0, height = 0, depth = 1, nChannels = 0;
     bool isFloat = false;  // float, half or double samples: linear, whatever the caller's encoding
+    bool is8Bit = false;   // 8-bit samples, which ReadPixels() gives as byte / 255
     std::vector<std::string> channelNames;
     // What the decoder allocates besides the float pixels it returns, from the header alone.
     uint64_t decodeBufferBytes = 0;

@@ -74,6 +74,7 @@ class PNGReader : public ImageFileReader {
         spec.width = int(std::min<png_uint_32>(header.width, INT32_MAX));
         spec.height = int(std::min<png_uint_32>(header.height, INT32_MAX));
         spec.nChannels = header.channels;
+        spec.is8Bit = header.bitDepth == 8;
         spec.channelNames = header.channels >= 3 ? std::vector<std::string>{"R", "G", "B", "A"}
                                                  : std::vector<std::string>{"Y", "A"};
         spec.channelNames.resize(size_t(header.channels));

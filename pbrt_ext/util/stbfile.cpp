@@ -49,6 +49,7 @@ class STBReader : public ImageFileReader {
         spec.height = height;
         spec.nChannels = channels;
         spec.isFloat = hdr;
+        spec.is8Bit = !hdr;
         spec.channelNames = channels >= 3 ? std::vector<std::string>{"R", "G", "B", "A"}
                                           : std::vector<std::string>{"Y", "A"};
         spec.channelNames.resize(size_t(channels));
