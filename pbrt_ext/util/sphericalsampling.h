@@ -24,7 +24,6 @@ using Vector3d = Vector3<double>;
 
 // v's component orthogonal to unit w, normalized.
 inline Vector3d Orthogonal(Vector3d v, Vector3d w) { return Normalize(GramSchmidt(v, w)); }
-inline double AngleBetween(Vector3d a, Vector3d b) { return std::atan2(Length(Cross(a, b)), Dot(a, b)); }
 // The sum of the angles a-b and c-d, each in [0, pi], with one atan2: the argument of the
 // product of (cos, sin) pairs, taken in [0, 2 pi).
 inline double SumOfAngles(Vector3d a, Vector3d b, Vector3d c, Vector3d d) {
@@ -70,12 +69,15 @@ class SphericalTriangle {
         Vector3d a = d[0], b = d[1], c = d[2];
         Vector3d nab = Cross(a, b), nac = Cross(a, c);
         if (!(area > 0) || Length(nab) == 0 || Length(nac) == 0) return {};
-        // The triangle's angle at a, between the planes of its two edges there.
-        double alpha = AngleBetween(nab, nac);
+        // The triangle's angle alpha at a, between the planes of its two edges there, as its
+        // cosine and sine.
+        double normAlpha = Length(nab) * Length(nac);
+        double cosAlpha = Dot(nab, nac) / normAlpha, sinAlpha = Length(Cross(nab, nac)) / normAlpha;
         // Arvo's closed form for c': the sub-triangle's excess fixes the angle at b, and with
-        // it the cosine q of the arc from a to c'.
-        double s = std::sin(u[0] * area - alpha), t = std::cos(u[0] * area - alpha);
-        double cosAlpha = std::cos(alpha), sinAlpha = std::sin(alpha);
+        // it the cosine q of the arc from a to c'. s and t are the sine and cosine of
+        // u0 area - alpha, by the difference formulas (one sincos instead of an atan2 and two).
+        double sinPhi = std::sin(u[0] * area), cosPhi = std::cos(u[0] * area);
+        double s = sinPhi * cosAlpha - cosPhi * sinAlpha, t = cosPhi * cosAlpha + sinPhi * sinAlpha;
         double k1 = t - cosAlpha, k2 = s + sinAlpha * Dot(a, b);
         double q = ((k2 * t - k1 * s) * cosAlpha - k2) / ((k2 * s + k1 * t) * sinAlpha);
         q = std::clamp(std::isfinite(q) ? q : 1.0, -1.0, 1.0);
