@@ -220,16 +220,18 @@ class LayeredBxDF {
         Float uc[1] = {0.5f};
         Point2f u[1] = {Point2f(0.5f, 0.5f)};
         Float A = std::max(bottom.rho(Vector3f(0, 0, 1), uc, u).Average(), albedo.Average());
+        if (!(A < 1))
+            return 1;
         Float Ri = std::max<Float>(0, 1 - 1 / Sqr(top.Eta()));
-        return A * (1 - Ri) / (1 - A * Ri);
+        return std::max<Float>(0, A) * (1 - Ri) / (1 - A * Ri);
     }
 
     // The probability that Sample_f() reflects off the top rather than entering the layers:
     // in proportion to the light each returns, the top's Fresnel reflectance against its
     // transmittance times innerReflectance. pbrt-v4 leaves the choice to the top's Fresnel
     // term alone, which over a dark base picks the highlight, most of what the surface
-    // reflects, 4 % of the time at normal incidence. Kept below 1 so that the layers are
-    // always sampled, whatever the estimate.
+    // reflects, 4 % of the time at normal incidence. Never below that Fresnel term (the
+    // estimate is at most 1), and kept below 1 so that the layers are always sampled.
     PBRT_CPU_GPU Float TopReflectionProbability(Vector3f wo) const {
         Float R = FrDielectric(AbsCosTheta(wo), top.Eta());
         Float returned = R + (1 - R) * innerReflectance;
