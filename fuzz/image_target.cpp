@@ -42,10 +42,10 @@ void FuzzImage(std::span<const uint8_t> data) {
 void FuzzStb(std::span<const uint8_t> data) {
     if (data.empty())
         return;
-    std::string name = std::string("input.") + kExtensions[data[0] % std::size(kExtensions)];
-    if (!IsSTBImageFile(name))
+    std::string extension = kExtensions[data[0] % std::size(kExtensions)];
+    if (!IsSTBImageExtension("." + extension))
         return;
-    std::string path = WriteScratchFile("stb", name, data.subspan(1));
+    std::string path = WriteScratchFile("stb", "input." + extension, data.subspan(1));
     ExpectReadOrRejection("stb", [&] { Image::Read(path); });
 }
 

@@ -63,7 +63,7 @@ std::unique_ptr<ImageFileReader> OpenImageFile(const std::string &path) {
     switch (ImageFileFormatOf(path)) {
     case ImageFileFormat::PNG: return OpenPNGFile(path);
     case ImageFileFormat::EXR: return OpenEXRFile(path);
-    default: return IsSTBImageFile(path) ? OpenSTBFile(path) : GetImageCodec().Open(path);
+    default: return IsSTBImageExtension(LowercaseExtension(path)) ? OpenSTBFile(path) : GetImageCodec().Open(path);
     }
 }
 
@@ -186,9 +186,11 @@ void Image::KeepBytes(const std::vector<float> &raw, int nChannels, std::array<i
     // The table holds exactly what decoding each sample would give.
     for (int b = 0; b < 256; ++b) toLinear[size_t(b)] = encoding.ToLinear(float(b) / 255);
     size_t n = size_t(resolution.x) * size_t(resolution.y), stride = size_t(nChannels);
-    auto byteAt = [&](size_t i, int c) { return uint8_t(std::lround(raw[i * stride + size_t(channel[c])] * 255)); };
+    auto sample = [&](size_t i, int c) { return raw[i * stride + size_t(channel[c])]; };
+    auto byteAt = [&](size_t i, int c) { return uint8_t(std::lround(sample(i, c) * 255)); };
+    // Equal samples are equal bytes.
     bool gray = channel[0] == channel[1] && channel[1] == channel[2];
-    for (size_t i = 0; i < n && gray; ++i) gray = byteAt(i, 0) == byteAt(i, 1) && byteAt(i, 1) == byteAt(i, 2);
+    for (size_t i = 0; i < n && gray; ++i) gray = sample(i, 0) == sample(i, 1) && sample(i, 1) == sample(i, 2);
     byteChannels = gray ? 1 : 3;
     bytes.resize(n * size_t(byteChannels));
     for (size_t i = 0; i < n; ++i)
@@ -197,12 +199,7 @@ void Image::KeepBytes(const std::vector<float> &raw, int nChannels, std::array<i
 
 void Image::SetChannel(Point2i p, int c, Float value) {
     if (Is8Bit()) {
-        pixels.resize(3 * size_t(resolution.x) * size_t(resolution.y));
-        for (int y = 0; y < resolution.y; ++y)
-            for (int x = 0; x < resolution.x; ++x) {
-                RGB rgb = GetChannels(Point2i(x, y));
-                for (int k = 0; k < 3; ++k) pixels[3 * PixelIndex(Point2i(x, y)) + size_t(k)] = rgb[k];
-            }
+        pixels = DecodeBytes();
         bytes.clear();
     }
     pixels[3 * PixelIndex(p) + size_t(c)] = value;
@@ -251,9 +248,10 @@ void Image::WriteEXR(const std::string &path, const std::string &tmpPath,
     for (const char *name : names) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
 
     // OpenEXR addresses the buffer by absolute data-window coordinates.
-    std::vector<Float> rgb = FloatRGB();
+    std::vector<Float> scratch;
+    const std::vector<Float> &rgb = FloatRGB(scratch);
     size_t xStride = 3 * sizeof(float), yStride = xStride * size_t(resolution.x);
-    char *base = reinterpret_cast<char *>(rgb.data()) -
+    char *base = reinterpret_cast<char *>(const_cast<Float *>(rgb.data())) -
                  ptrdiff_t(dataBounds.pMin.x) * ptrdiff_t(xStride) -
                  ptrdiff_t(dataBounds.pMin.y) * ptrdiff_t(yStride);
     Imf::FrameBuffer frameBuffer;
@@ -268,8 +266,7 @@ void Image::WriteEXR(const std::string &path, const std::string &tmpPath,
     }
 }
 
-std::vector<Float> Image::FloatRGB() const {
-    if (!Is8Bit()) return pixels;
+std::vector<Float> Image::DecodeBytes() const {
     std::vector<Float> rgb(3 * size_t(resolution.x) * size_t(resolution.y));
     for (int y = 0; y < resolution.y; ++y)
         for (int x = 0; x < resolution.x; ++x)
@@ -278,7 +275,8 @@ std::vector<Float> Image::FloatRGB() const {
 }
 
 void Image::Write8Bit(const std::string &path, const std::string &tmpPath) const {
-    std::vector<Float> rgb = FloatRGB();
+    std::vector<Float> scratch;
+    const std::vector<Float> &rgb = FloatRGB(scratch);
     std::vector<uint8_t> encoded(rgb.size());
     for (size_t i = 0; i < rgb.size(); ++i) {
         Float v = rgb[i] > 0 ? std::min<Float>(rgb[i], 1) : 0;  // NaN becomes 0 too

@@ -6,8 +6,8 @@
 // values through a table of the file's encoding, as pbrt-v4 keeps them: a quarter to a twelfth of
 // the memory of float RGB, and texture lookups that miss the cache that much less. Every other
 // image is float RGB. Encodings apply only at the integer file boundary. Reading goes
-// through libpng for PNG, OpenEXR for EXR (by the file's signature) and OpenImageIO for the rest
-// (integer formats such as PNG, JPEG, TGA are decoded with a ColorEncoding, sRGB unless the
+// through libpng for PNG, OpenEXR for EXR (by the file's signature), stb_image for TGA, JPEG,
+// BMP, GIF, PSD, PIC and HDR (util/stbfile.h) and OpenImageIO for the rest (integer formats such as PNG, JPEG, TGA are decoded with a ColorEncoding, sRGB unless the
 // caller says otherwise; float formats such as EXR, PFM, HDR are taken as linear; color is never
 // premultiplied by alpha, as pbrt-v4 reads it). Writing EXR goes through OpenEXR (32-bit float
 // RGB with the metadata as header attributes), PNG through libpng as 8-bit sRGB, any other
@@ -196,8 +196,12 @@ class Image {
     void WriteEXR(const std::string &path, const std::string &tmpPath,
                   const ImageMetadata &metadata) const;
     void Write8Bit(const std::string &path, const std::string &tmpPath) const;
-    // The pixels as float RGB, row-major.
-    std::vector<Float> FloatRGB() const;
+    // An 8-bit image's pixels as float RGB, row-major.
+    std::vector<Float> DecodeBytes() const;
+    // The pixels as float RGB: the image's own, or an 8-bit image's decoded into scratch.
+    const std::vector<Float> &FloatRGB(std::vector<Float> &scratch) const {
+        return Is8Bit() ? (scratch = DecodeBytes()) : pixels;
+    }
 
     size_t PixelIndex(Point2i p) const { return size_t(p.y) * size_t(resolution.x) + size_t(p.x); }
     // The 8-bit samples of a file (raw: byte / 255 as the reader gives them, in its channel

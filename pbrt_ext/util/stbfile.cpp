@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -97,14 +96,12 @@ class STBReader : public ImageFileReader {
 
 }  // namespace
 
-bool IsSTBImageFile(const std::string &path) {
+bool IsSTBImageExtension(const std::string &extension) {
     // Not PNM: Debian's stb_image (2.27) reads 16-bit PNM samples in the wrong byte order, and
     // OpenImageIO reads PNM files right.
     static constexpr std::array<const char *, 8> kExtensions = {".tga", ".jpg", ".jpeg", ".bmp",
                                                                 ".gif", ".psd", ".pic", ".hdr"};
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    return std::find(kExtensions.begin(), kExtensions.end(), ext) != kExtensions.end();
+    return std::find(kExtensions.begin(), kExtensions.end(), extension) != kExtensions.end();
 }
 
 std::unique_ptr<ImageFileReader> OpenSTBFile(const std::string &path) {

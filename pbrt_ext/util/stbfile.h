@@ -12,8 +12,8 @@
 
 namespace pbrt {
 
-// Whether path's extension names a format read here (case-insensitive).
-bool IsSTBImageFile(const std::string &path);
+// Whether a file extension (lowercase, with its dot: ".tga") names a format read here.
+bool IsSTBImageExtension(const std::string &extension);
 
 // Reads the header. Radiance HDR files are linear floats, everything else 8 bits per channel,
 // as pbrt-v4 reads them (a 16-bit PSD file keeps its high 8 bits). Throws std::runtime_error(<reason>), also
