@@ -507,6 +507,9 @@ pstd::optional<ShapeIntersection> EmbreeAggregate::Intersect(const Ray &ray, Flo
         si = TransformInteraction(*worldFromInstance, si);
     si.wo = wo;
     si.materialIndex = g.attrs.materialIndex;
+    si.mediumInterface = g.attrs.mediumInterface.IsMediumTransition()
+                             ? g.attrs.mediumInterface
+                             : MediumInterface(ray.medium);
     if (g.attrs.areaLightBase >= 0) {
         bool isMesh = g.kind == GeometryKind::Triangles || g.kind == GeometryKind::BilinearPatches;
         si.areaLightIndex = g.attrs.areaLightBase + (isMesh ? int(rh.hit.primID) : 0);

@@ -12,6 +12,7 @@
 // _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON) and _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON).
 #pragma once
 
+#include "pbrt_ext/base/medium.h"
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/ray.h"
 #include "pbrt_ext/shapes.h"
@@ -26,6 +27,12 @@
 namespace pbrt {
 
 struct PrimitiveAttributes {
+    PrimitiveAttributes(int materialIndex = -1, int areaLightBase = -1,
+                        std::shared_ptr<const FloatTexture> alpha = nullptr,
+                        MediumInterface mediumInterface = {})
+        : materialIndex(materialIndex), areaLightBase(areaLightBase), alpha(std::move(alpha)),
+          mediumInterface(mediumInterface) {}
+
     int materialIndex = -1;
     // The area light of the geometry's first primitive: primitive i of a mesh emits as light
     // areaLightBase + i. -1: not emissive. Ignored (with a warning) inside an object, since
@@ -35,6 +42,8 @@ struct PrimitiveAttributes {
     // = a < 1 is kept with probability a, decided by a hash of the ray and the hit distance, so
     // that the same query always gives the same answer. Null: opaque, and no cost at all.
     std::shared_ptr<const FloatTexture> alpha = nullptr;
+    // The media inside and outside the shape; used only where they differ (a boundary).
+    MediumInterface mediumInterface;
 };
 
 class EmbreeAggregate {

@@ -323,9 +323,11 @@ PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrid
                                        std::string *lightSampler) {
     const ParameterDictionary &p = e.parameters;
     bool supported = e.name.empty() || e.name == "path" || e.name == "volpath";
+    // The others (bdpt, sppm, ...) render media too in pbrt-v4: volpath comes closest.
     if (!supported)
-        Substitute(e, "Integrator", "\"path\"");
+        Substitute(e, "Integrator", "\"volpath\"");
     PathIntegratorOptions options;
+    options.volumetric = e.name != "path";
     options.maxDepth = p.GetOneInt("maxdepth", 5);
     options.regularize = p.GetOneBool("regularize", false);
     options.strategy = overrides.strategy.value_or(PathStrategy::MIS);

@@ -80,8 +80,12 @@ SampledSpectrum PathIntegrator::Li(Ray ray, SampledWavelengths &lambda, Sampler 
         }
         std::optional<BSDF> maybeBSDF = scene.GetBSDF(si, lambda);
         if (!maybeBSDF) {
-            // An interface between media, which we do not model: continue straight through.
+            // An interface between media, which this integrator ignores (as pbrt-v4's path
+            // does): continue straight through. Shadow rays stop at it, so only this path can
+            // reach what lies behind: the next emitter counts in full, as after a specular
+            // bounce.
             ray = si.SpawnRay(ray.d);
+            lightSampled = false;
             --depth;
             continue;
         }

@@ -31,6 +31,13 @@ struct PathIntegratorOptions {
     int maxDepth = 5;
     bool regularize = false;
     PathStrategy strategy = PathStrategy::MIS;
+    // pbrt-v4's "volpath" (its default integrator) rather than "path": media are rendered by
+    // the VolPathIntegrator. A scene without media needs none of it and is rendered by the
+    // path tracer, which estimates the same image.
+    bool volumetric = false;
+    // VolPathIntegrator only: weigh wavelengths by spectral MIS (pbrt-v4), or follow the hero
+    // wavelength's probabilities alone (to measure what spectral MIS gains).
+    bool spectralMIS = true;
 };
 
 // Counts of traced rays, per thread; summed for the statistics.

@@ -1,7 +1,8 @@
 // Surface interactions: what the integrator knows about a ray's hit (pbrt-v4's src/pbrt/interaction.h,
-// reduced: no media, no ray differentials).
+// reduced: no ray differentials).
 #pragma once
 
+#include "pbrt_ext/base/medium.h"
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/ray.h"
 #include "pbrt_ext/util/vecmath.h"
@@ -22,13 +23,22 @@ struct SurfaceInteraction {
     } shading;
     int materialIndex = -1;   // into Scene::materials; -1: no material (an interface)
     int areaLightIndex = -1;  // into Scene::lights; -1: not emissive
+    // The media on either side: the shape's where it separates two media, else the ray's on
+    // both sides (pbrt-v4's SetIntersectionProperties).
+    MediumInterface mediumInterface;
 
+    // The medium a ray leaving in direction w travels through.
+    PBRT_CPU_GPU int GetMedium(Vector3f w) const {
+        return Dot(w, Vector3f(n)) > 0 ? mediumInterface.outside : mediumInterface.inside;
+    }
     // A ray leaving the surface in direction w, its origin offset to w's side.
-    PBRT_CPU_GPU Ray SpawnRay(Vector3f w) const { return Ray(OffsetRayOrigin(p, n, w), w); }
+    PBRT_CPU_GPU Ray SpawnRay(Vector3f w) const {
+        return Ray(OffsetRayOrigin(p, n, w), w, GetMedium(w));
+    }
     // A ray toward the point p2 with d = p2 - o, so that t = 1 reaches it.
     PBRT_CPU_GPU Ray SpawnRayTo(Point3f p2) const {
         Point3f o = OffsetRayOrigin(p, n, p2 - p);
-        return Ray(o, p2 - o);
+        return Ray(o, p2 - o, GetMedium(p2 - p));
     }
 };
 

@@ -234,6 +234,10 @@ std::vector<std::string> ParameterDictionary::GetStringArray(const std::string &
     return lookupArray<std::string>(name, "string", AsString);
 }
 
+std::vector<RGB> ParameterDictionary::GetRGBArray(const std::string &name) const {
+    return lookupArray<RGB>(name, "rgb", AsTriple<RGB>);
+}
+
 std::optional<SpectrumParam> ParameterDictionary::GetOneSpectrum(const std::string &name) const {
     const ParsedParameter *p = find(name);
     if (!p)

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "pbrt_ext/parser.h"
+#include "pbrt_ext/util/color.h"
 #include "pbrt_ext/util/vecmath.h"
 
 #include <optional>
@@ -78,6 +79,8 @@ class ParameterDictionary {
     std::vector<Vector3f> GetVector3fArray(const std::string &name) const;
     std::vector<Normal3f> GetNormal3fArray(const std::string &name) const;
     std::vector<std::string> GetStringArray(const std::string &name) const;
+    // "rgb" values three at a time (pbrt-v4's GetRGBArray: the rgbgrid medium's samples).
+    std::vector<RGB> GetRGBArray(const std::string &name) const;
 
     // An "rgb", "blackbody" or "spectrum" parameter; nullopt when absent.
     std::optional<SpectrumParam> GetOneSpectrum(const std::string &name) const;

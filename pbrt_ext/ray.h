@@ -1,4 +1,5 @@
-// Rays and their safe spawning from surfaces (pbrt-v4's src/pbrt/ray.h, reduced: no media, no time).
+// Rays and their safe spawning from surfaces (pbrt-v4's src/pbrt/ray.h, reduced: no time, no
+// differentials).
 #pragma once
 
 #include "pbrt_ext/pbrt.h"
@@ -9,11 +10,12 @@ namespace pbrt {
 
 struct Ray {
     Ray() = default;
-    PBRT_CPU_GPU Ray(Point3f o, Vector3f d) : o(o), d(d) {}
+    PBRT_CPU_GPU Ray(Point3f o, Vector3f d, int medium = -1) : o(o), d(d), medium(medium) {}
     PBRT_CPU_GPU Point3f operator()(Float t) const { return o + d * t; }
 
     Point3f o;
     Vector3f d;
+    int medium = -1;  // the medium the origin lies in: an index into Scene::media, -1 vacuum
 };
 
 // Moves a ray origin off the surface at p along the geometric normal n, to the side w leaves

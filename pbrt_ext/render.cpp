@@ -2,6 +2,7 @@
 
 #include "pbrt_ext/integrators.h"
 #include "pbrt_ext/scene.h"
+#include "pbrt_ext/volpath.h"
 #include "pbrt_ext/util/progressreporter.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -16,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <variant>
 #include <vector>
 
 namespace pbrt {
@@ -64,7 +66,8 @@ int NextWaveSize(int waveSize, int samplesDone, double elapsed, double timeLimit
 }
 
 // Samples [first, last) of every pixel of the tile, each pixel's in index order.
-void RenderTile(Scene &scene, const PathIntegrator &integrator, const Bounds2i &tile, int first,
+template <typename Integrator>
+void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile, int first,
                 int last, ThreadCounts &counts) {
     // Embree traverses fastest without denormals (its documentation's advice for every rendering
     // thread); set per tile since TBB owns the threads.
@@ -79,8 +82,10 @@ void RenderTile(Scene &scene, const PathIntegrator &integrator, const Bounds2i &
             CameraSample cs = GetCameraSample(sampler, p, scene.film.GetFilter());
             pstd::optional<CameraRay> cr = scene.camera.GenerateRay(cs);
             SampledSpectrum L(0.f);
-            if (cr)
+            if (cr) {
+                cr->ray.medium = scene.cameraMedium;
                 L = cr->weight * integrator.Li(cr->ray, lambda, sampler, counts.rays);
+            }
             if (!IsValidRadiance(L)) {
                 ++counts.discarded;
                 continue;
@@ -107,7 +112,12 @@ RenderStatistics Render(Scene &scene, const RenderOptions &options) {
     if (options.nThreads > 0)
         threads = std::make_unique<tbb::global_control>(
             tbb::global_control::max_allowed_parallelism, options.nThreads);
-    const PathIntegrator integrator(scene, scene.integratorOptions);
+    // The volumetric path tracer only where there are media to render.
+    using Integrator = std::variant<PathIntegrator, VolPathIntegrator>;
+    const Integrator integrator =
+        scene.integratorOptions.volumetric && !scene.media.empty()
+            ? Integrator(VolPathIntegrator(scene, scene.integratorOptions))
+            : Integrator(PathIntegrator(scene, scene.integratorOptions));
     const Bounds2i pixels = scene.film.PixelBounds();
     const std::vector<Bounds2i> tiles = Tiles(pixels);
     std::vector<int> tileSamples(tiles.size(), 0);  // every pixel of tile t has [0, tileSamples[t])
@@ -123,7 +133,9 @@ RenderStatistics Render(Scene &scene, const RenderOptions &options) {
         tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
             if (cancellable && Cancelled(options))
                 return;
-            RenderTile(scene, integrator, tiles[t], waveStart, waveEnd, counts.local());
+            std::visit([&](const auto &concrete) {
+                RenderTile(scene, concrete, tiles[t], waveStart, waveEnd, counts.local());
+            }, integrator);
             tileSamples[t] = waveEnd;
             progress.Update(int64_t(tiles[t].Area()) * (waveEnd - waveStart));
         });

@@ -8,23 +8,20 @@ namespace pbrt {
 
 SceneBuilder::SceneBuilder(Camera camera, RGBFilm film, Sampler sampler)
     : scene(new Scene{EmbreeAggregate(), {}, {}, {}, LightSampler(UniformLightSampler({})),
-                      std::move(camera), std::move(film), std::move(sampler), {}}) {}
+                      std::move(camera), std::move(film), std::move(sampler), {}, {}, -1}) {}
 
 int SceneBuilder::AddMaterial(Material material) {
     scene->materials.push_back(std::move(material));
     return int(scene->materials.size()) - 1;
 }
 
-namespace {
-
-PrimitiveAttributes Attributes(int material, std::optional<FloatTexture> alpha) {
-    PrimitiveAttributes attributes{material, -1, nullptr};
+PrimitiveAttributes SceneBuilder::Attributes(int material,
+                                             std::optional<FloatTexture> alpha) const {
+    PrimitiveAttributes attributes{material, -1, nullptr, currentMediumInterface};
     if (alpha)
         attributes.alpha = std::make_shared<const FloatTexture>(std::move(*alpha));
     return attributes;
 }
-
-}  // namespace
 
 template <typename ShapeFor>
 int SceneBuilder::AddAreaLights(const AreaLightDescription &emission, int count,
@@ -122,6 +119,27 @@ void SceneBuilder::AddObjectInstance(const std::string &name, const Transform &w
 }
 
 void SceneBuilder::AddLight(Light light) { scene->lights.push_back(std::move(light)); }
+
+int SceneBuilder::AddMedium(Medium medium) {
+    scene->media.push_back(std::move(medium));
+    return int(scene->media.size()) - 1;
+}
+
+void SceneBuilder::CheckMedium(int medium) const {
+    if (medium < -1 || medium >= int(scene->media.size()))
+        throw std::invalid_argument("medium " + std::to_string(medium) + " was not added");
+}
+
+void SceneBuilder::SetMediumInterface(MediumInterface mediumInterface) {
+    CheckMedium(mediumInterface.inside);
+    CheckMedium(mediumInterface.outside);
+    currentMediumInterface = mediumInterface;
+}
+
+void SceneBuilder::SetCameraMedium(int medium) {
+    CheckMedium(medium);
+    scene->cameraMedium = medium;
+}
 
 void SceneBuilder::SetLightSampler(std::string name) {
     if (std::optional<std::string> error = LightSamplerNameError(name))

@@ -12,6 +12,7 @@
 #include "pbrt_ext/lights.h"
 #include "pbrt_ext/lightsamplers.h"
 #include "pbrt_ext/materials.h"
+#include "pbrt_ext/media.h"
 #include "pbrt_ext/samplers.h"
 #include "pbrt_ext/shapes.h"
 
@@ -72,6 +73,10 @@ class Scene {
     RGBFilm film;
     Sampler sampler;
     PathIntegratorOptions integratorOptions;
+    // Participating media, referred to by index from rays and surfaces; the camera's (-1:
+    // vacuum) starts every camera ray.
+    std::vector<Medium> media;
+    int cameraMedium = -1;
 };
 
 // Emission of an area light attached to a shape (pbrt-v4's AreaLightSource "diffuse").
@@ -117,6 +122,13 @@ class SceneBuilder {
     // Lights that are not attached to shapes: point, spot, distant, infinite.
     void AddLight(Light light);
 
+    // Participating media, referred to by the index AddMedium returns. Shapes added after
+    // SetMediumInterface bound the media it names (pbrt-v4's MediumInterface directive); the
+    // camera medium is where camera rays start.
+    int AddMedium(Medium medium);
+    void SetMediumInterface(MediumInterface mediumInterface);
+    void SetCameraMedium(int medium);
+
     void SetIntegrator(PathIntegratorOptions options) { integratorOptions = options; }
     void SetLightSampler(std::string name);  // "bvh" (default), "power" or "uniform"
 
@@ -132,7 +144,12 @@ class SceneBuilder {
     std::optional<AreaLightDescription> EmissionOutsideObjects(
         std::optional<AreaLightDescription> emission) const;
 
+    // The attributes of a shape being added with this material and alpha texture.
+    PrimitiveAttributes Attributes(int material, std::optional<FloatTexture> alpha) const;
+    void CheckMedium(int medium) const;
+
     std::unique_ptr<Scene> scene;
+    MediumInterface currentMediumInterface;
     std::map<std::string, int> objects;  // name -> the aggregate's object id
     std::string currentObject;           // empty outside ObjectBegin/End
     PathIntegratorOptions integratorOptions;

@@ -101,14 +101,6 @@ void BasicSceneBuilder::SetCTM(const class Transform &ctm) {
 
 bool BasicSceneBuilder::FirstTime(const std::string &topic) { return warned.insert(topic).second; }
 
-void BasicSceneBuilder::IgnoreMedia(const FileLoc &loc) {
-    if (scene->ignoredMediaLoc) return;
-    scene->ignoredMediaLoc = loc;
-    WarningAt(loc,
-              "participating media are not supported; MakeNamedMedium, MediumInterface and "
-              "\"medium\" attributes are ignored");
-}
-
 // ---- Options ------------------------------------------------------------------------------
 
 void BasicSceneBuilder::Option(const std::string &name, const std::string &value, FileLoc loc) {
@@ -174,6 +166,7 @@ void BasicSceneBuilder::Camera(const std::string &name, ParsedParameterVector pa
     scene->camera.parameters = ParameterDictionary(std::move(params));
     scene->camera.loc = loc;
     scene->camera.cameraFromWorld = graphicsState.ctm;
+    scene->camera.medium = graphicsState.outsideMedium;
     namedCoordinateSystems["camera"] = Inverse(graphicsState.ctm);
 }
 
@@ -262,16 +255,26 @@ void BasicSceneBuilder::SetActiveTransform(bool start, const FileLoc &loc) {
     graphicsState.startTransformActive = start;
 }
 
-// ---- Media (not supported) ----------------------------------------------------------------
+// ---- Media --------------------------------------------------------------------------------
 
-void BasicSceneBuilder::MakeNamedMedium(const std::string &, ParsedParameterVector, FileLoc loc) {
-    IgnoreMedia(loc);
+void BasicSceneBuilder::MakeNamedMedium(const std::string &name, ParsedParameterVector params,
+                                        FileLoc loc) {
+    if (auto it = scene->media.find(name); it != scene->media.end())
+        throw ParseError(loc, "named medium \"" + name + "\" redefined; first defined at " +
+                                  it->second.loc.ToString());
+    scene->media[name] = TransformedSceneEntity(
+        SceneEntity(name, ParameterDictionary(std::move(params), graphicsState.mediumAttributes),
+                    loc),
+        graphicsState.ctm);
 }
 
+// Names are checked at EndOfFiles: pbrt-v4 lets MakeNamedMedium come after its use.
 void BasicSceneBuilder::MediumInterface(const std::string &insideName,
                                         const std::string &outsideName, FileLoc loc) {
-    // MediumInterface "" "" asks for no medium, which is what this renderer does anyway.
-    if (!insideName.empty() || !outsideName.empty()) IgnoreMedia(loc);
+    graphicsState.insideMedium = insideName;
+    graphicsState.outsideMedium = outsideName;
+    mediumUses.push_back({insideName, loc});
+    mediumUses.push_back({outsideName, loc});
 }
 
 // ---- Attributes and blocks ----------------------------------------------------------------
@@ -317,7 +320,7 @@ void BasicSceneBuilder::Attribute(const std::string &target, ParsedParameterVect
     else if (target == "texture")
         attributes = &graphicsState.textureAttributes;
     else if (target == "medium")
-        return IgnoreMedia(loc);
+        attributes = &graphicsState.mediumAttributes;
     else
         throw ParseError(loc, "unknown Attribute target \"" + target +
                                   "\"; expected \"shape\", \"light\", \"material\", \"medium\" "
@@ -421,6 +424,8 @@ void BasicSceneBuilder::Shape(const std::string &name, ParsedParameterVector par
     shape.materialName = graphicsState.currentMaterialName;
     shape.areaLight = graphicsState.areaLight;
     shape.insideObject = activeObject;
+    shape.insideMedium = graphicsState.insideMedium;
+    shape.outsideMedium = graphicsState.outsideMedium;
     if (!activeObject.empty())
         scene->instanceDefinitions[activeObject].shapeIndices.push_back(int(scene->shapes.size()));
     scene->shapes.push_back(std::move(shape));
@@ -480,6 +485,11 @@ void BasicSceneBuilder::CheckReferences() const {
             throw ParseError(shape.loc, "named material \"" + shape.materialName +
                                             "\" is not defined; expected MakeNamedMaterial \"" +
                                             shape.materialName + "\" in the scene");
+    for (const auto &[name, loc] : mediumUses)
+        if (!name.empty() && !scene->media.count(name))
+            throw ParseError(loc, "medium \"" + name +
+                                      "\" is not defined; expected MakeNamedMedium \"" + name +
+                                      "\" in the scene");
     for (const InstanceSceneEntity &instance : scene->instances)
         if (!scene->instanceDefinitions.count(instance.name))
             throw ParseError(instance.loc, "object \"" + instance.name +

@@ -1,6 +1,6 @@
 // The scene as the file describes it: pbrt-v4's BasicSceneBuilder (the ParserTarget that tracks
 // the graphics state) and the entities of its BasicScene, reduced to what this renderer has: no
-// animated transforms, no media, render space = world space.
+// animated transforms, render space = world space.
 //
 // Everything here is plain data: names, unevaluated ParameterDictionary objects and the FileLoc
 // of the directive that made each entity, so that the conversion to a SceneBuilder (which
@@ -45,6 +45,7 @@ struct TransformedSceneEntity : SceneEntity {
 
 struct CameraSceneEntity : SceneEntity {
     Transform cameraFromWorld;
+    std::string medium;  // the outside medium in force at Camera; empty: vacuum
 };
 
 struct ShapeSceneEntity : SceneEntity {
@@ -58,6 +59,8 @@ struct ShapeSceneEntity : SceneEntity {
     std::optional<SceneEntity> areaLight;
     // The ObjectBegin this shape was defined in; empty for shapes placed in the world directly.
     std::string insideObject;
+    // The MediumInterface in force: named media inside and outside, empty for vacuum.
+    std::string insideMedium, outsideMedium;
 };
 
 // An ObjectBegin/ObjectEnd block: the shapes it defines, as indices into SceneDescription::shapes.
@@ -99,9 +102,9 @@ struct SceneDescription {
     std::map<std::string, TransformedSceneEntity> floatTextures, spectrumTextures;
     std::map<std::string, InstanceDefinitionSceneEntity> instanceDefinitions;
     std::vector<InstanceSceneEntity> instances;
-
-    // Where the file first asked for participating media (ignored here, with one warning).
-    std::optional<FileLoc> ignoredMediaLoc;
+    // MakeNamedMedium, by name: entity name = the medium's name, its type in "string type",
+    // placed by the CTM at the directive.
+    std::map<std::string, TransformedSceneEntity> media;
 };
 
 // Turns parser callbacks into a SceneDescription. Violations of the file's structure throw
@@ -171,9 +174,11 @@ class BasicSceneBuilder : public ParserTarget {
         int currentMaterialIndex = 0;
         std::string currentMaterialName;
         std::optional<SceneEntity> areaLight;
-        // Attribute "shape"|"light"|"material"|"texture": defaults for later directives.
+        std::string insideMedium, outsideMedium;  // MediumInterface; empty: vacuum
+        // Attribute "shape"|"light"|"material"|"medium"|"texture": defaults for later
+        // directives.
         ParsedParameterVector shapeAttributes, lightAttributes, materialAttributes,
-            textureAttributes;
+            mediumAttributes, textureAttributes;
     };
     enum class BlockState { OptionsBlock, WorldBlock };
     // An open AttributeBegin ('a') or ObjectBegin ('o') and where it was opened.
@@ -187,7 +192,6 @@ class BasicSceneBuilder : public ParserTarget {
     void SetCTM(const class Transform &ctm);
     void SetActiveTransform(bool start, const FileLoc &loc);
     void PopBlock(char kind, const FileLoc &loc);
-    void IgnoreMedia(const FileLoc &loc);
     bool FirstTime(const std::string &topic);
     void CheckReferences() const;
 
@@ -198,6 +202,8 @@ class BasicSceneBuilder : public ParserTarget {
     std::vector<OpenBlock> pushStack;
     std::map<std::string, class Transform> namedCoordinateSystems;
     std::string activeObject;  // the ObjectBegin being defined, empty outside one
+    // Every medium name a MediumInterface directive used, and where: checked at EndOfFiles.
+    std::vector<std::pair<std::string, FileLoc>> mediumUses;
     std::string inputName;
     std::set<std::string> warned;
 };

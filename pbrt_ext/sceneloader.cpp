@@ -72,15 +72,54 @@ class MaterialResolver {
     std::map<std::string, int> named;
 };
 
+// Media are created when the camera or a shape first names them: an unused MakeNamedMedium
+// (and the grid or file it holds) is never loaded. -1 is vacuum, as is a medium type this
+// renderer lacks (CreateMedium warns).
+class MediumResolver {
+  public:
+    MediumResolver(const SceneDescription &scene, SceneBuilder &builder, std::string folder)
+        : scene(scene), builder(builder), folder(std::move(folder)) {}
+
+    int For(const std::string &name) {
+        if (name.empty())
+            return -1;
+        auto [it, inserted] = indices.try_emplace(name, -1);
+        if (inserted) {
+            std::optional<Medium> medium = CreateMedium(scene.media.at(name), folder);
+            if (medium)
+                it->second = builder.AddMedium(std::move(*medium));
+        }
+        return it->second;
+    }
+    MediumInterface For(const ShapeSceneEntity &shape) {
+        return MediumInterface(For(shape.insideMedium), For(shape.outsideMedium));
+    }
+
+  private:
+    const SceneDescription &scene;
+    SceneBuilder &builder;
+    std::string folder;
+    std::map<std::string, int> indices;
+};
+
 void WarnAboutOptions(const SceneDescription &scene) {
     for (const auto &[name, option] : scene.options)
         WarningAt(option.loc, "Option \"%s\" is not supported: ignored", name.c_str());
 }
 
+// The resolvers that turn a shape's names into the builder's indices.
+struct Resolvers {
+    MaterialResolver &materials;
+    TextureResolver &textures;
+    MediumResolver &media;
+};
+
 void AddShapes(const SceneDescription &scene, const std::vector<int> &indices,
-               SceneBuilder &builder, MaterialResolver &materials, TextureResolver &textures) {
+               SceneBuilder &builder, Resolvers &r) {
+    auto &[materials, textures, media] = r;
     for (int i : indices) {
         const ShapeSceneEntity &shape = scene.shapes[i];
+        builder.SetMediumInterface(media.For(shape));
         std::optional<AreaLightDescription> emission;
         if (shape.areaLight)
             emission = CreateAreaLight(*shape.areaLight, textures.Folder());
@@ -89,15 +128,14 @@ void AddShapes(const SceneDescription &scene, const std::vector<int> &indices,
 }
 
 // Objects that some instance places, each defined once in the aggregate, then the instances.
-void AddInstances(const SceneDescription &scene, SceneBuilder &builder,
-                  MaterialResolver &materials, TextureResolver &textures) {
+void AddInstances(const SceneDescription &scene, SceneBuilder &builder, Resolvers &r) {
     std::set<std::string> used;
     for (const InstanceSceneEntity &instance : scene.instances)
         used.insert(instance.name);
     for (const std::string &name : used) {
         const InstanceDefinitionSceneEntity &object = scene.instanceDefinitions.at(name);
         builder.BeginObject(name);
-        AddShapes(scene, object.shapeIndices, builder, materials, textures);
+        AddShapes(scene, object.shapeIndices, builder, r);
         builder.EndObject();
     }
     for (const InstanceSceneEntity &instance : scene.instances)
@@ -124,13 +162,16 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
     builder.SetLightSampler(lightSampler);
     TextureResolver textures(scene, folder);
     MaterialResolver materials(scene, builder, overrides, textures);
+    MediumResolver media(scene, builder, folder);
+    Resolvers resolvers{materials, textures, media};
+    builder.SetCameraMedium(media.For(scene.camera.medium));
 
     std::vector<int> worldShapes;
     for (size_t i = 0; i < scene.shapes.size(); ++i)
         if (scene.shapes[i].insideObject.empty())
             worldShapes.push_back(int(i));
-    AddShapes(scene, worldShapes, builder, materials, textures);
-    AddInstances(scene, builder, materials, textures);
+    AddShapes(scene, worldShapes, builder, resolvers);
+    AddInstances(scene, builder, resolvers);
     for (const TransformedSceneEntity &light : scene.lights)
         if (std::optional<Light> l = CreateLight(light, folder))
             builder.AddLight(std::move(*l));

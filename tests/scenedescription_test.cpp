@@ -75,7 +75,7 @@ TEST(SceneDescription, DefaultsArePbrtV4s) {
     ASSERT_EQ(s.materials.size(), 1u);
     EXPECT_EQ(s.materials[0].name, "diffuse");
     EXPECT_TRUE(s.shapes.empty() && s.lights.empty() && s.instances.empty());
-    EXPECT_FALSE(s.ignoredMediaLoc.has_value());
+    EXPECT_TRUE(s.media.empty());
 }
 
 TEST(SceneDescription, OptionsKeepNameParametersAndLocation) {
@@ -348,18 +348,39 @@ TEST(SceneDescription, FilesAreDescribedWithTheirPathInEachLocation) {
     EXPECT_EQ(s.shapes[0].loc.ToString(), file.string() + ":3:3");
 }
 
-TEST(SceneDescription, MediaAreIgnoredWithOneWarning) {
+TEST(SceneDescription, MediaAreNamedPlacedAndAttachedToShapesAndCamera) {
     WarningCounter warnings;
-    SceneDescription s = Describe(R"(MediumInterface "" ""
+    SceneDescription s = Describe(R"(MediumInterface "" "air"
+Camera "perspective"
 WorldBegin
-MakeNamedMedium "fog" "string type" "homogeneous"
-MediumInterface "fog" ""
+Translate 1 2 3
 Attribute "medium" "float scale" 2
+MakeNamedMedium "fog" "string type" "homogeneous"
+MakeNamedMedium "air" "string type" "homogeneous"
+MediumInterface "fog" "air"
 Shape "sphere")");
-    EXPECT_EQ(warnings.Count(), 1);
-    ASSERT_TRUE(s.ignoredMediaLoc.has_value());
-    EXPECT_EQ(s.ignoredMediaLoc->ToString(), "s.pbrt:3:1");
-    EXPECT_EQ(s.shapes.size(), 1u);
+    EXPECT_EQ(warnings.Count(), 0);
+    ASSERT_EQ(s.media.size(), 2u);
+    const TransformedSceneEntity &fog = s.media.at("fog");
+    EXPECT_EQ(fog.loc.ToString(), "s.pbrt:6:1");
+    EXPECT_EQ(fog.parameters.GetOneFloat("scale", 1), 2);  // the Attribute's default
+    EXPECT_EQ(fog.worldFromObject(Point3f(0, 0, 0)), Point3f(1, 2, 3));
+    EXPECT_EQ(s.camera.medium, "air");
+    ASSERT_EQ(s.shapes.size(), 1u);
+    EXPECT_EQ(s.shapes[0].insideMedium, "fog");
+    EXPECT_EQ(s.shapes[0].outsideMedium, "air");
+}
+
+TEST(SceneDescription, UndefinedOrRedefinedMediaAreErrorsAtTheirUse) {
+    EXPECT_EQ(ErrorOf(R"(WorldBegin
+MediumInterface "smoke" ""
+Shape "sphere")"),
+              "s.pbrt:2:1: error: medium \"smoke\" is not defined; expected MakeNamedMedium "
+              "\"smoke\" in the scene");
+    EXPECT_EQ(ErrorOf(R"(WorldBegin
+MakeNamedMedium "fog" "string type" "homogeneous"
+MakeNamedMedium "fog" "string type" "homogeneous")"),
+              "s.pbrt:3:1: error: named medium \"fog\" redefined; first defined at s.pbrt:2:1");
 }
 
 TEST(SceneDescription, OnlySrgbColorSpaceIsSupported) {
@@ -400,9 +421,6 @@ TEST(SceneDescription, WarningsNameWhatIsIgnoredWhere) {
     EXPECT_EQ(WarningsOf("ColorSpace \"rec2020\"\nWorldBegin"),
               "s.pbrt:1:1: warning: color space \"rec2020\" is not supported; colors are read as "
               "srgb\n");
-    EXPECT_EQ(WarningsOf("WorldBegin\n  MediumInterface \"\" \"fog\""),
-              "s.pbrt:2:3: warning: participating media are not supported; MakeNamedMedium, "
-              "MediumInterface and \"medium\" attributes are ignored\n");
     EXPECT_EQ(WarningsOf("WorldBegin\nActiveTransform EndTime"),
               "s.pbrt:2:1: warning: motion blur is not supported; only the start-time transform "
               "is used\n");

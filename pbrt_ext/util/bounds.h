@@ -140,6 +140,27 @@ class Bounds3 {
         return o;
     }
 
+    // The parametric range [*hitt0, *hitt1] within [0, tMax] where the ray o + t d is inside the
+    // box (the slab test, as pbrt-v4's Bounds3::IntersectP); false if it misses. Division by a
+    // zero direction component gives infinities that the comparisons handle.
+    PBRT_CPU_GPU bool IntersectP(Point3f o, Vector3f d, Float tMax, Float *hitt0,
+                                 Float *hitt1) const {
+        Float t0 = 0, t1 = tMax;
+        for (int i = 0; i < 3; ++i) {
+            Float invD = 1 / d[i];
+            Float tNear = (pMin[i] - o[i]) * invD, tFar = (pMax[i] - o[i]) * invD;
+            if (tNear > tFar) std::swap(tNear, tFar);
+            // pbrt-v4's 1 + 2 gamma(3): keeps a ray grazing a face from missing it by rounding.
+            tFar *= 1 + 2 * 3 * std::numeric_limits<Float>::epsilon() * 0.5f;
+            t0 = tNear > t0 ? tNear : t0;
+            t1 = tFar < t1 ? tFar : t1;
+            if (t0 > t1) return false;
+        }
+        *hitt0 = t0;
+        *hitt1 = t1;
+        return true;
+    }
+
     // The sphere through the corners (used to size infinite lights, as pbrt-v4).
     PBRT_CPU_GPU void BoundingSphere(Point3<T> *center, Float *radius) const {
         *center = pMin + (pMax - pMin) / T(2);

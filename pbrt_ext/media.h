@@ -1,0 +1,291 @@
+// Participating media (pbrt-v4's src/pbrt/media.h and base/medium.h; the book's chapter 11).
+//
+// A medium answers two questions. SamplePoint(p): its absorption and scattering coefficients,
+// phase function and emission at p. SampleRay(ray, tMax): a MajorantIterator that walks the
+// ray in segments, each with a majorant sigma_maj >= sigma_t over it (one segment for a
+// homogeneous medium; the voxels of a coarse majorant grid, by 3D DDA, for grid media).
+// SampleT_maj() turns the two into delta tracking: it samples collision distances against the
+// majorant and lets the integrator decide at each one whether it is absorption, real or null
+// scattering. Sampled spectra use pbrt-v4's convention: the first wavelength is the hero that
+// distances are sampled with; the others ride along with the ratios of their probabilities.
+//
+// Media are referred to by index into Scene::media; -1 is vacuum (pbrt-v4's null Medium).
+#pragma once
+
+#include "pbrt_ext/base/medium.h"
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/ray.h"
+#include "pbrt_ext/spectrum.h"
+#include "pbrt_ext/util/bounds.h"
+#include "pbrt_ext/util/rng.h"
+#include "pbrt_ext/util/sampledgrid.h"
+#include "pbrt_ext/util/scattering.h"
+#include "pbrt_ext/util/spectrum.h"
+#include "pbrt_ext/util/transform.h"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace pbrt {
+
+struct PhaseFunctionSample {
+    Float p;
+    Vector3f wi;
+    Float pdf;
+};
+
+// Henyey and Greenstein's phase function, sampled exactly (p == pdf).
+class HGPhaseFunction {
+  public:
+    HGPhaseFunction() = default;
+    explicit HGPhaseFunction(Float g) : g(g) {}
+
+    Float p(Vector3f wo, Vector3f wi) const { return HenyeyGreenstein(Dot(wo, wi), g); }
+    std::optional<PhaseFunctionSample> Sample_p(Vector3f wo, Point2f u) const {
+        Float pdf;
+        Vector3f wi = SampleHenyeyGreenstein(wo, g, u, &pdf);
+        return PhaseFunctionSample{pdf, wi, pdf};
+    }
+    Float PDF(Vector3f wo, Vector3f wi) const { return p(wo, wi); }
+
+  private:
+    Float g = 0;
+};
+
+// The medium at a point: coefficients per unit length, phase function, emitted radiance.
+struct MediumProperties {
+    SampledSpectrum sigma_a, sigma_s;
+    HGPhaseFunction phase;
+    SampledSpectrum Le;
+};
+
+// A stretch [tMin, tMax] of a ray (unit direction) over which sigma_t <= sigma_maj.
+struct RayMajorantSegment {
+    Float tMin, tMax;
+    SampledSpectrum sigma_maj;
+};
+
+class HomogeneousMajorantIterator {
+  public:
+    HomogeneousMajorantIterator() = default;
+    HomogeneousMajorantIterator(Float tMin, Float tMax, SampledSpectrum sigma_maj)
+        : seg{tMin, tMax, sigma_maj}, called(false) {}
+    std::optional<RayMajorantSegment> Next() {
+        if (called)
+            return {};
+        called = true;
+        return seg;
+    }
+
+  private:
+    RayMajorantSegment seg{};
+    bool called = true;
+};
+
+// Maximum density per voxel of a coarse grid over the medium's bounds.
+struct MajorantGrid {
+    MajorantGrid() = default;
+    MajorantGrid(Bounds3f bounds, Point3i res)
+        : bounds(bounds), voxels(size_t(res.x) * res.y * res.z, 0), res(res) {}
+
+    Float Lookup(int x, int y, int z) const { return voxels[x + res.x * (y + size_t(res.y) * z)]; }
+    void Set(int x, int y, int z, Float v) { voxels[x + res.x * (y + size_t(res.y) * z)] = v; }
+    // The voxel's extent in [0, 1]^3 (the grid's own coordinates).
+    Bounds3f VoxelBounds(int x, int y, int z) const {
+        return Bounds3f(Point3f(Float(x) / res.x, Float(y) / res.y, Float(z) / res.z),
+                        Point3f(Float(x + 1) / res.x, Float(y + 1) / res.y, Float(z + 1) / res.z));
+    }
+
+    Bounds3f bounds;  // in the medium's space
+    std::vector<Float> voxels;
+    Point3i res;
+};
+
+// Walks a ray through a MajorantGrid voxel by voxel (Amanatides and Woo's 3D DDA), giving one
+// segment per voxel with sigma_maj = sigma_t times the voxel's maximum density.
+class DDAMajorantIterator {
+  public:
+    DDAMajorantIterator() = default;
+    // ray in the medium's space; [tMin, tMax] its overlap with the grid's bounds.
+    DDAMajorantIterator(Ray ray, Float tMin, Float tMax, const MajorantGrid *grid,
+                        SampledSpectrum sigma_t);
+    std::optional<RayMajorantSegment> Next();
+
+  private:
+    SampledSpectrum sigma_t;
+    Float tMin = Infinity, tMax = -Infinity;
+    const MajorantGrid *grid = nullptr;
+    Float nextCrossingT[3], deltaT[3];
+    int step[3], voxelLimit[3], voxel[3];
+};
+
+// The same coefficients everywhere.
+class HomogeneousMedium {
+  public:
+    using MajorantIterator = HomogeneousMajorantIterator;
+
+    // sigma_a and sigma_s are multiplied by sigmaScale, Le by LeScale.
+    HomogeneousMedium(Spectrum sigma_a, Spectrum sigma_s, Float sigmaScale, Spectrum Le,
+                      Float LeScale, Float g);
+
+    bool IsEmissive() const { return emissive; }
+    MediumProperties SamplePoint(Point3f, const SampledWavelengths &lambda) const {
+        return MediumProperties{sigmaScale * sigma_a.Sample(lambda),
+                                sigmaScale * sigma_s.Sample(lambda), phase,
+                                emissive ? LeScale * Le.Sample(lambda) : SampledSpectrum(0.f)};
+    }
+    HomogeneousMajorantIterator SampleRay(const Ray &, Float tMax,
+                                          const SampledWavelengths &lambda) const {
+        return HomogeneousMajorantIterator(
+            0, tMax, sigmaScale * (sigma_a.Sample(lambda) + sigma_s.Sample(lambda)));
+    }
+
+  private:
+    Spectrum sigma_a, sigma_s, Le;
+    Float sigmaScale, LeScale;
+    HGPhaseFunction phase;
+    bool emissive;
+};
+
+// Emission of a density grid medium: a spectrum scaled by a grid (pbrt-v4's "Le" and
+// "Lescale"), or blackbody radiation of a temperature grid.
+struct GridEmission {
+    Spectrum Le = Spectrum(0.f);       // already divided by its photometric integral
+    SampledGrid<Float> LeScale;        // per-point scale of Le
+    std::optional<SampledGrid<Float>> temperature;
+    Float temperatureScale = 1, temperatureOffset = 0;
+};
+
+// pbrt-v4's "uniformgrid": constant sigma_a, sigma_s scaled by a trilinearly interpolated
+// density over the box [p0, p1] in the medium's space.
+class GridMedium {
+  public:
+    using MajorantIterator = DDAMajorantIterator;
+
+    GridMedium(const Bounds3f &bounds, const Transform &renderFromMedium, Spectrum sigma_a,
+               Spectrum sigma_s, Float sigmaScale, Float g, SampledGrid<Float> density,
+               GridEmission emission);
+
+    bool IsEmissive() const { return emissive; }
+    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda) const;
+    DDAMajorantIterator SampleRay(Ray ray, Float tMax, const SampledWavelengths &lambda) const;
+    const MajorantGrid &Majorants() const { return majorantGrid; }
+
+  private:
+    Bounds3f bounds;
+    Transform renderFromMedium;
+    Spectrum sigma_a, sigma_s;
+    Float sigmaScale;
+    HGPhaseFunction phase;
+    SampledGrid<Float> density;
+    GridEmission emission;
+    bool emissive;
+    MajorantGrid majorantGrid;
+};
+
+// pbrt-v4's "rgbgrid": sigma_a, sigma_s (and emission) given per grid sample as RGB.
+class RGBGridMedium {
+  public:
+    using MajorantIterator = DDAMajorantIterator;
+
+    // A missing sigma grid is 1 everywhere (pbrt-v4). Le requires sigma_a (emission is
+    // sigma_a Le).
+    RGBGridMedium(const Bounds3f &bounds, const Transform &renderFromMedium, Float g,
+                  std::optional<SampledGrid<RGBUnboundedSpectrum>> sigma_a,
+                  std::optional<SampledGrid<RGBUnboundedSpectrum>> sigma_s, Float sigmaScale,
+                  std::optional<SampledGrid<RGBIlluminantSpectrum>> Le, Float LeScale);
+
+    bool IsEmissive() const { return Le && LeScale > 0; }
+    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda) const;
+    DDAMajorantIterator SampleRay(Ray ray, Float tMax, const SampledWavelengths &lambda) const;
+    const MajorantGrid &Majorants() const { return majorantGrid; }
+
+  private:
+    Bounds3f bounds;
+    Transform renderFromMedium;
+    HGPhaseFunction phase;
+    std::optional<SampledGrid<RGBUnboundedSpectrum>> sigma_a, sigma_s;
+    Float sigmaScale;
+    std::optional<SampledGrid<RGBIlluminantSpectrum>> Le;
+    Float LeScale;
+    MajorantGrid majorantGrid;
+};
+
+// A medium of the scene: the closed set of media types, dispatched once per ray segment.
+class Medium {
+  public:
+    using Variant = std::variant<HomogeneousMedium, GridMedium, RGBGridMedium>;
+    template <typename T>
+    Medium(T medium) : medium(std::move(medium)) {}
+
+    bool IsEmissive() const {
+        return std::visit([](const auto &m) { return m.IsEmissive(); }, medium);
+    }
+    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda) const {
+        return std::visit([&](const auto &m) { return m.SamplePoint(p, lambda); }, medium);
+    }
+    template <typename T>
+    const T *Get() const { return std::get_if<T>(&medium); }
+
+    // Delta tracking along ray up to tMax (in units of ray.d): draws collision distances
+    // against the majorant, starting from u and continuing with rng, and calls
+    // callback(p, MediumProperties, sigma_maj, T_maj) at each, where T_maj is the majorant
+    // transmittance since the previous one. The callback returns whether to go on. Returns
+    // the majorant transmittance from the last collision to tMax, or 1 if the callback
+    // stopped.
+    template <typename F>
+    SampledSpectrum SampleT_maj(Ray ray, Float tMax, Float u, RNG &rng,
+                                const SampledWavelengths &lambda, F callback) const {
+        return std::visit(
+            [&](const auto &m) { return SampleT_majIn(m, ray, tMax, u, rng, lambda, callback); },
+            medium);
+    }
+
+  private:
+    template <typename M, typename F>
+    static SampledSpectrum SampleT_majIn(const M &medium, Ray ray, Float tMax, Float u, RNG &rng,
+                                         const SampledWavelengths &lambda, F &callback);
+
+    Variant medium;
+};
+
+template <typename M, typename F>
+SampledSpectrum Medium::SampleT_majIn(const M &medium, Ray ray, Float tMax, Float u, RNG &rng,
+                                      const SampledWavelengths &lambda, F &callback) {
+    // Distances along a unit direction, so that sigma is per unit length.
+    Float length = Length(ray.d);
+    tMax *= length;
+    ray.d = ray.d / length;
+    typename M::MajorantIterator iter = medium.SampleRay(ray, tMax, lambda);
+    // An infinite segment (a ray escaping a medium with no boundary) has finite optical depth
+    // only where sigma_maj is 0; the largest float keeps 0 * dt at 0.
+    auto finite = [](Float dt) { return std::isinf(dt) ? std::numeric_limits<Float>::max() : dt; };
+    SampledSpectrum T_maj(1.f);
+    while (std::optional<RayMajorantSegment> seg = iter.Next()) {
+        if (seg->sigma_maj[0] == 0) {
+            T_maj *= Exp(-finite(seg->tMax - seg->tMin) * seg->sigma_maj);
+            continue;
+        }
+        for (Float tMin = seg->tMin;;) {
+            Float t = tMin + SampleExponential(u, seg->sigma_maj[0]);
+            u = rng.Uniform<Float>();
+            if (t >= seg->tMax) {
+                T_maj *= Exp(-finite(seg->tMax - tMin) * seg->sigma_maj);
+                break;
+            }
+            T_maj *= Exp(-(t - tMin) * seg->sigma_maj);
+            Point3f p = ray(t);
+            if (!callback(p, medium.SamplePoint(p, lambda), seg->sigma_maj, T_maj))
+                return SampledSpectrum(1.f);
+            T_maj = SampledSpectrum(1.f);
+            tMin = t;
+        }
+    }
+    return T_maj;
+}
+
+}  // namespace pbrt
