@@ -572,8 +572,10 @@ void Parser::Include(std::string_view directive, const FileLoc &loc) {
     if (files.size() > kMaxIncludeDepth)
         throw ParseError(loc, "Include nesting deeper than " + std::to_string(kMaxIncludeDepth) +
                                   " (recursive Include?)");
+    // As pbrt-v4 resolves every file name: against the main file's folder, also inside an
+    // included file.
     if (name.is_relative())
-        name = std::filesystem::path(files.back()->Filename()).parent_path() / name;
+        name = std::filesystem::path(files.front()->Filename()).parent_path() / name;
     files.push_back(std::make_unique<Tokenizer>(Tokenizer::FromFile(name.string(), &loc)));
     // Each file fits the budget alone, but the scene keeps what all of them describe, and a few
     // files that include each other twice describe exponentially much.

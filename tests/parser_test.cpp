@@ -571,7 +571,7 @@ TEST(Parser, ShortensLongTokensInMessages) {
 
 // Files and Include
 
-TEST(Parser, IncludeResolvesAgainstTheIncludingFilesFolder) {
+TEST(Parser, IncludeResolvesAgainstTheMainFilesFolder) {
     RecordingTarget target;
     ParseFile(&target, std::string(PBRT_EXT_TEST_DATA_DIR) + "/parser/main.pbrt");
     std::string dir = std::string(PBRT_EXT_TEST_DATA_DIR) + "/parser/";
