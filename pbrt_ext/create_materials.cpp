@@ -109,7 +109,13 @@ std::optional<Material> CreateMaterial(const SceneEntity &e, const std::string &
                                        TextureResolver &textures) {
     const ParameterDictionary &p = e.parameters;
     std::optional<Material> material;
-    if (type == "diffuse" || type.empty()) {
+    if (type.empty() || type == "none") {
+        // pbrt-v4 reads both as "interface", with the same warning.
+        WarningAt(e.loc, "Material \"%s\" is deprecated; use \"interface\" instead", type.c_str());
+        p.ReportUnused();
+        return std::nullopt;
+    }
+    if (type == "diffuse") {
         material = DiffuseMaterial{textures.GetSpectrumTexture(p, "reflectance", Spectrum(0.5f), SpectrumType::Albedo)};
     } else if (type == "conductor") {
         ConductorMaterial m;

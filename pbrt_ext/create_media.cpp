@@ -248,6 +248,38 @@ RGBGridMedium CreateRGBGrid(const ParameterDictionary &p, const Transform &rende
                          NonNegative(p, "Lescale", 1, loc));
 }
 
+CloudMedium CreateCloud(const ParameterDictionary &p, const Transform &renderFromMedium,
+                        const FileLoc &loc, const std::string &folder) {
+    Bounds3f bounds(p.GetOnePoint3f("p0", Point3f(0, 0, 0)), p.GetOnePoint3f("p1", Point3f(1, 1, 1)));
+    if (bounds.Volume() <= 0)
+        throw ParseError(LocOf(p, "p0", loc),
+                         "cloud medium bounds p0, p1 enclose no volume; expected p0 < p1");
+    return CloudMedium(bounds, renderFromMedium, Coefficient(p, "sigma_a", folder),
+                       Coefficient(p, "sigma_s", folder), PhaseAsymmetry(p, loc),
+                       NonNegative(p, "density", 1, loc), NonNegative(p, "wispiness", 1, loc),
+                       NonNegative(p, "frequency", 5, loc));
+}
+
+NanoVDBMedium CreateNanoVDB(const ParameterDictionary &p, const Transform &renderFromMedium,
+                            const FileLoc &loc, const std::string &folder) {
+    std::string filename = p.GetOneString("filename", "");
+    if (filename.empty())
+        throw ParseError(loc, "nanovdb medium needs a \"string filename\"");
+    const FileLoc &at = LocOf(p, "filename", loc);
+    Spectrum sigma_a = Coefficient(p, "sigma_a", folder), sigma_s = Coefficient(p, "sigma_s", folder);
+    try {
+        return NanoVDBMedium(ResolvePath(folder, filename), p.GetOneString("gridname", "density"),
+                             p.GetOneString("temperaturename", "temperature"), renderFromMedium,
+                             sigma_a, sigma_s, NonNegative(p, "scale", 1, loc),
+                             PhaseAsymmetry(p, loc), NonNegative(p, "Lescale", 1, loc),
+                             p.GetOneFloat("temperatureoffset",
+                                           p.GetOneFloat("temperaturecutoff", 0)),
+                             p.GetOneFloat("temperaturescale", 1));
+    } catch (const std::runtime_error &e) {
+        throw ParseError(at, e.what());
+    }
+}
+
 }  // namespace
 
 std::optional<Medium> CreateMedium(const TransformedSceneEntity &e, const std::string &folder) {
@@ -260,11 +292,11 @@ std::optional<Medium> CreateMedium(const TransformedSceneEntity &e, const std::s
         medium = CreateUniformGrid(p, e.worldFromObject, e.loc, folder);
     else if (type == "rgbgrid")
         medium = CreateRGBGrid(p, e.worldFromObject, e.loc);
-    else if (type == "cloud" || type == "nanovdb") {
-        WarningAt(e.loc, "medium type \"%s\" is not supported yet: medium \"%s\" is vacuum",
-                  type.c_str(), e.name.c_str());
-        return {};
-    } else
+    else if (type == "cloud")
+        medium = CreateCloud(p, e.worldFromObject, e.loc, folder);
+    else if (type == "nanovdb")
+        medium = CreateNanoVDB(p, e.worldFromObject, e.loc, folder);
+    else
         throw ParseError(LocOf(p, "type", e.loc),
                          "unknown medium type \"" + type +
                              "\"; expected homogeneous, uniformgrid, rgbgrid, cloud or nanovdb");

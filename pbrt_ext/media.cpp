@@ -1,5 +1,7 @@
 #include "pbrt_ext/media.h"
 
+#include "pbrt_ext/util/noise.h"
+
 #include <algorithm>
 
 namespace pbrt {
@@ -166,6 +168,48 @@ DDAMajorantIterator RGBGridMedium::SampleRay(Ray ray, Float rayTMax,
         return {};
     // The majorant grid holds sigma_t itself.
     return DDAMajorantIterator(ray, tMin, tMax, &majorantGrid, SampledSpectrum(1.f));
+}
+
+// ---- CloudMedium --------------------------------------------------------------------------
+
+CloudMedium::CloudMedium(const Bounds3f &bounds, const Transform &renderFromMedium,
+                         Spectrum sigma_a, Spectrum sigma_s, Float g, Float density,
+                         Float wispiness, Float frequency)
+    : bounds(bounds), renderFromMedium(renderFromMedium), sigma_a(TabulatedForLookup(sigma_a)),
+      sigma_s(TabulatedForLookup(sigma_s)), phase(g), density(density), wispiness(wispiness),
+      frequency(frequency) {}
+
+HomogeneousMajorantIterator CloudMedium::SampleRay(Ray ray, Float rayTMax,
+                                                   const SampledWavelengths &lambda) const {
+    Float tMin, tMax;
+    if (!OverlapInMediumSpace(renderFromMedium, bounds, &ray, rayTMax, &tMin, &tMax))
+        return {};
+    // The density is at most 1.
+    return HomogeneousMajorantIterator(tMin, tMax, sigma_a.Sample(lambda) + sigma_s.Sample(lambda));
+}
+
+// pbrt-v4's cloud: the lookup point pushed around by two octaves of the noise's gradient
+// (wisps), five octaves of noise, scaled by density and falling off with altitude, with a
+// dense layer below y = 0.5.
+Float CloudMedium::Density(Point3f p) const {
+    Point3f pp = frequency * p;
+    if (wispiness > 0) {
+        Float vomega = 0.05f * wispiness, vlambda = 10.f;
+        for (int i = 0; i < 2; ++i) {
+            pp += vomega * DNoise(vlambda * pp);
+            vomega *= 0.5f;
+            vlambda *= 1.99f;
+        }
+    }
+    Float d = 0, omega = 0.5f, lambda = 1.f;
+    for (int i = 0; i < 5; ++i) {
+        d += omega * Noise(lambda * pp);
+        omega *= 0.5f;
+        lambda *= 1.99f;
+    }
+    d = Clamp((1 - p.y) * 4.5f * density * d, 0, 1);
+    d += 2 * std::max<Float>(0, 0.5f - p.y);
+    return Clamp(d, 0, 1);
 }
 
 }  // namespace pbrt

@@ -25,6 +25,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -215,10 +216,71 @@ class RGBGridMedium {
     MajorantGrid majorantGrid;
 };
 
+// pbrt-v4's "cloud": a procedural cloud in a box, sums of Perlin noise thinning with altitude
+// (y in the medium's space), one majorant for the whole box.
+class CloudMedium {
+  public:
+    using MajorantIterator = HomogeneousMajorantIterator;
+
+    CloudMedium(const Bounds3f &bounds, const Transform &renderFromMedium, Spectrum sigma_a,
+                Spectrum sigma_s, Float g, Float density, Float wispiness, Float frequency);
+
+    bool IsEmissive() const { return false; }
+    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda) const {
+        Float d = Density(renderFromMedium.ApplyInverse(p));
+        return MediumProperties{d * sigma_a.Sample(lambda), d * sigma_s.Sample(lambda), phase,
+                                SampledSpectrum(0.f)};
+    }
+    HomogeneousMajorantIterator SampleRay(Ray ray, Float tMax,
+                                          const SampledWavelengths &lambda) const;
+    // The density in [0, 1] at p in the medium's space.
+    Float Density(Point3f p) const;
+
+  private:
+    Bounds3f bounds;
+    Transform renderFromMedium;
+    Spectrum sigma_a, sigma_s;
+    HGPhaseFunction phase;
+    Float density, wispiness, frequency;
+};
+
+// pbrt-v4's "nanovdb": a density grid (and optionally a temperature grid, which emits as a
+// blackbody) read from a NanoVDB file with the library's own reader, trilinearly interpolated,
+// with a 64^3 majorant grid over its bounds. The grids live behind a pointer, so that the
+// NanoVDB headers stay in nanovdbmedium.cpp.
+class NanoVDBMedium {
+  public:
+    using MajorantIterator = DDAMajorantIterator;
+
+    struct Grids;  // the file's density and temperature grids
+    // Reads and validates the grids; throws std::runtime_error naming the file and the fault.
+    NanoVDBMedium(const std::string &filename, const std::string &densityName,
+                  const std::string &temperatureName, const Transform &renderFromMedium,
+                  Spectrum sigma_a, Spectrum sigma_s, Float sigmaScale, Float g, Float LeScale,
+                  Float temperatureOffset, Float temperatureScale);
+
+    bool IsEmissive() const;
+    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda) const;
+    DDAMajorantIterator SampleRay(Ray ray, Float tMax, const SampledWavelengths &lambda) const;
+    const MajorantGrid &Majorants() const { return *majorantGrid; }
+    Bounds3f Bounds() const { return bounds; }
+
+  private:
+    std::shared_ptr<const Grids> grids;
+    Bounds3f bounds;
+    Transform renderFromMedium;
+    Spectrum sigma_a, sigma_s;
+    Float sigmaScale;
+    HGPhaseFunction phase;
+    Float LeScale, temperatureOffset, temperatureScale;
+    std::shared_ptr<const MajorantGrid> majorantGrid;
+};
+
 // A medium of the scene: the closed set of media types, dispatched once per ray segment.
 class Medium {
   public:
-    using Variant = std::variant<HomogeneousMedium, GridMedium, RGBGridMedium>;
+    using Variant =
+        std::variant<HomogeneousMedium, GridMedium, RGBGridMedium, CloudMedium, NanoVDBMedium>;
     template <typename T>
     Medium(T medium) : medium(std::move(medium)) {}
 

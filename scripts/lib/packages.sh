@@ -33,4 +33,6 @@ project_packages=(
   # Sobol' direction numbers (Boost.Random's table, header-only)
   libembree-dev libopenexr-dev libopenimageio-dev openimageio-tools libtbb-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libboost-dev libpng-dev libstb-dev
+  # participating media: NanoVDB grids (header-only) and the zlib its reader inflates them with
+  libnanovdb-dev zlib1g-dev
 )
