@@ -35,6 +35,8 @@ void FuzzStb(std::span<const uint8_t> data);
 void FuzzFabric(std::span<const uint8_t> data);
 // A scene file through LoadScene: the parser and everything the scene loader creates.
 void FuzzScene(std::span<const uint8_t> data);
+// A NanoVDB file that a scene's "nanovdb" medium reads (through LoadScene).
+void FuzzNanoVDB(std::span<const uint8_t> data);
 
 struct FuzzTarget {
     std::string_view name;  // as scripts/fuzz and tests/data/fuzz/<name>/ call it
@@ -44,6 +46,7 @@ struct FuzzTarget {
 // Every target, in the order scripts/fuzz --list prints them.
 inline constexpr FuzzTarget kFuzzTargets[] = {
     {"parser", FuzzParser}, {"ply", FuzzPly},     {"image", FuzzImage}, {"pngexr", FuzzPngExr},
-    {"stb", FuzzStb},       {"fabric", FuzzFabric}, {"scene", FuzzScene}};
+    {"stb", FuzzStb},       {"fabric", FuzzFabric}, {"scene", FuzzScene},
+    {"nanovdb", FuzzNanoVDB}};
 
 }  // namespace pbrt::fuzz

@@ -5,6 +5,9 @@
 
 #include "pbrt_ext/util/colorspace.h"
 #include "pbrt_ext/util/error.h"
+#include "pbrt_ext/util/resourcelimits.h"
+
+#include <fmt/format.h>
 
 #include <cmath>
 #include <string>
@@ -94,17 +97,17 @@ Float NonNegative(const ParameterDictionary &p, const std::string &name, Float d
                   const FileLoc &loc) {
     Float v = p.GetOneFloat(name, def);
     if (!(v >= 0) || !std::isfinite(v))
-        throw ParseError(LocOf(p, name, loc),
-                         "medium \"" + name + "\" is " + std::to_string(v) +
-                             "; expected a finite value >= 0");
+        throw ParseError(LocOf(p, name, loc), fmt::format("medium \"{}\" is {}; expected a finite "
+                                                          "value >= 0",
+                                                          name, v));
     return v;
 }
 
 Float PhaseAsymmetry(const ParameterDictionary &p, const FileLoc &loc) {
     Float g = p.GetOneFloat("g", 0);
     if (!(g > -1 && g < 1))
-        throw ParseError(LocOf(p, "g", loc), "medium \"g\" is " + std::to_string(g) +
-                                                 "; expected -1 < g < 1");
+        throw ParseError(LocOf(p, "g", loc),
+                         fmt::format("medium \"g\" is {}; expected -1 < g < 1", g));
     return g;
 }
 
@@ -267,14 +270,18 @@ NanoVDBMedium CreateNanoVDB(const ParameterDictionary &p, const Transform &rende
         throw ParseError(loc, "nanovdb medium needs a \"string filename\"");
     const FileLoc &at = LocOf(p, "filename", loc);
     Spectrum sigma_a = Coefficient(p, "sigma_a", folder), sigma_s = Coefficient(p, "sigma_s", folder);
+    std::string path = ResolvePath(folder, filename);
     try {
-        return NanoVDBMedium(ResolvePath(folder, filename), p.GetOneString("gridname", "density"),
+        CheckMemory(at, "the grids of \"" + filename + "\"", NanoVDBMedium::GridBytes(path));
+        return NanoVDBMedium(path, p.GetOneString("gridname", "density"),
                              p.GetOneString("temperaturename", "temperature"), renderFromMedium,
                              sigma_a, sigma_s, NonNegative(p, "scale", 1, loc),
                              PhaseAsymmetry(p, loc), NonNegative(p, "Lescale", 1, loc),
                              p.GetOneFloat("temperatureoffset",
                                            p.GetOneFloat("temperaturecutoff", 0)),
                              p.GetOneFloat("temperaturescale", 1));
+    } catch (const ParseError &) {
+        throw;  // the memory check's, located already
     } catch (const std::runtime_error &e) {
         throw ParseError(at, e.what());
     }

@@ -259,6 +259,10 @@ class NanoVDBMedium {
                   Spectrum sigma_a, Spectrum sigma_s, Float sigmaScale, Float g, Float LeScale,
                   Float temperatureOffset, Float temperatureScale);
 
+    // The bytes the file's grids take once read, from its metadata, so that a caller can refuse
+    // a file that would not fit in memory before reading it; throws std::runtime_error.
+    static uint64_t GridBytes(const std::string &filename);
+
     bool IsEmissive() const;
     MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda) const;
     DDAMajorantIterator SampleRay(Ray ray, Float tMax, const SampledWavelengths &lambda) const;

@@ -15,6 +15,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 #include <stdexcept>
 
 namespace pbrt {
@@ -28,10 +30,26 @@ namespace {
 
 using TrilinearSampler = nanovdb::SampleFromVoxels<nanovdb::FloatGrid::TreeType, 1, false>;
 
-// The float grid gridName of the file, validated; null if the file has no grid of that name
-// and the grid is optional.
+// Throws unless every voxel of grid satisfies isValid: a density must be finite and >= 0, a
+// temperature finite, whatever bytes a file holds (NanoVDB's validator checks the structure
+// and, where the writer stored one, the checksum; not the values).
+template <typename Check>
+void CheckValues(const nanovdb::FloatGrid &grid, const std::string &what, Check isValid) {
+    const nanovdb::CoordBBox box = grid.indexBBox();
+    auto accessor = grid.getAccessor();
+    for (int k = box.min()[2]; k <= box.max()[2]; ++k)
+        for (int j = box.min()[1]; j <= box.max()[1]; ++j)
+            for (int i = box.min()[0]; i <= box.max()[0]; ++i)
+                if (!isValid(accessor.getValue(nanovdb::Coord(i, j, k))))
+                    throw std::runtime_error(what + " has an invalid value at voxel (" +
+                                             std::to_string(i) + ", " + std::to_string(j) + ", " +
+                                             std::to_string(k) + ")");
+}
+
+// The float grid gridName of the file, validated (densities >= 0: it is the density grid if
+// its name is densityName); null if the file has no grid of that name and it is optional.
 const nanovdb::FloatGrid *ReadGrid(const std::string &filename, const std::string &gridName,
-                                   bool required,
+                                   const std::string &densityName, bool required,
                                    nanovdb::GridHandle<nanovdb::HostBuffer> *handle) {
     std::string what = filename + ": grid \"" + gridName + "\"";
     try {
@@ -51,6 +69,9 @@ const nanovdb::FloatGrid *ReadGrid(const std::string &filename, const std::strin
         throw std::runtime_error(what + " is corrupt (NanoVDB's validator rejects it)");
     if (!grid->isFogVolume() && !grid->isUnknown())
         throw std::runtime_error(what + " is not a fog volume");
+    CheckValues(*grid, what, [&](float v) {
+        return std::isfinite(v) && (v >= 0 || gridName != densityName);
+    });
     return grid;
 }
 
@@ -101,13 +122,25 @@ NanoVDBMedium::NanoVDBMedium(const std::string &filename, const std::string &den
       sigma_s(TabulatedForLookup(sigma_s)), sigmaScale(sigmaScale), phase(g), LeScale(LeScale),
       temperatureOffset(temperatureOffset), temperatureScale(temperatureScale) {
     auto loaded = std::make_shared<Grids>();
-    loaded->density = ReadGrid(filename, densityName, true, &loaded->densityHandle);
-    loaded->temperature = ReadGrid(filename, temperatureName, false, &loaded->temperatureHandle);
+    loaded->density = ReadGrid(filename, densityName, densityName, true, &loaded->densityHandle);
+    loaded->temperature =
+        ReadGrid(filename, temperatureName, densityName, false, &loaded->temperatureHandle);
     bounds = WorldBounds(*loaded->density);
     if (loaded->temperature)
         bounds = Union(bounds, WorldBounds(*loaded->temperature));
     majorantGrid = DensityMajorants(*loaded->density, bounds);
     grids = std::move(loaded);
+}
+
+uint64_t NanoVDBMedium::GridBytes(const std::string &filename) {
+    try {
+        uint64_t bytes = 0;
+        for (const nanovdb::io::GridMetaData &grid : nanovdb::io::readGridMetaData(filename))
+            bytes = grid.gridSize > UINT64_MAX - bytes ? UINT64_MAX : bytes + grid.gridSize;
+        return bytes;
+    } catch (const std::exception &e) {
+        throw std::runtime_error(filename + ": " + e.what());
+    }
 }
 
 bool NanoVDBMedium::IsEmissive() const { return grids->temperature && LeScale > 0; }

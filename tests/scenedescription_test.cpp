@@ -546,6 +546,9 @@ TEST(SceneDescriptionErrors, BadFilesReportTheirLocation) {
          ":4:1: error: AttributeBegin without a matching AttributeEnd"},
         {"desc_no_worldbegin.pbrt",
          ": error: end of input before WorldBegin; expected WorldBegin and the scene"},
+        {"desc_undefined_medium.pbrt",
+         ":3:1: error: medium \"fog\" is not defined; expected MakeNamedMedium \"fog\" in the "
+         "scene"},
     };
     for (const ErrorCase &c : cases) {
         std::string path = BadFile(c.scene), expected = path + c.error;

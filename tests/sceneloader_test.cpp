@@ -321,10 +321,31 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
         {"load_missing_include.pbrt", ":3:1: error: cannot open included file \""},
         {"load_missing_ply.pbrt", ":3:17: error: cannot open PLY file \"no-such-mesh.ply\""},
         {"load_undefined_texture.pbrt", ":3:20: error: spectrum texture \"undefined\" is not defined"},
-        {"load_unused_parameter.pbrt", ":3:22: error: unused parameter \"float roughnes\""}};
+        {"load_unused_parameter.pbrt", ":3:22: error: unused parameter \"float roughnes\""},
+        // Participating media: each fault at the parameter that holds it.
+        {"load_unknown_medium_type.pbrt",
+         ":3:23: error: unknown medium type \"smoke\"; expected homogeneous, uniformgrid, "
+         "rgbgrid, cloud or nanovdb"},
+        {"load_unknown_medium_preset.pbrt",
+         ":3:52: error: unknown medium preset \"Milk\"; expected one of \"Apple\", "},
+        {"load_negative_sigma.pbrt",
+         ":3:51: error: rgb (-1, 0.5, 0.5) has a negative component, expected values >= 0"},
+        {"load_negative_medium_scale.pbrt",
+         ":3:51: error: medium \"scale\" is -2; expected a finite value >= 0"},
+        {"load_grid_size_mismatch.pbrt",
+         ":4:5: error: grid medium has 5 \"density\" values; expected nx*ny*nz = 8"},
+        // The NanoVDB reader's own message follows the resolved file name.
+        {"load_missing_nvdb.pbrt", ":3:49: error: "},
+        {"load_corrupt_nvdb.pbrt", ":3:49: error: "}};
     for (auto [name, expected] : cases) {
         std::string file = std::string(PBRT_EXT_TEST_DATA_DIR) + "/bad/" + name;
         std::string error = LoadError(file);
         EXPECT_EQ(error.substr(0, file.size() + std::strlen(expected)), file + expected) << error;
     }
+    std::string dir = std::string(PBRT_EXT_TEST_DATA_DIR) + "/bad/";
+    EXPECT_NE(LoadError(dir + "load_missing_nvdb.pbrt").find("no-such-volume.nvdb: Unable to open"),
+              std::string::npos);
+    EXPECT_NE(LoadError(dir + "load_corrupt_nvdb.pbrt")
+                  .find("load_corrupt.nvdb: Magic number error: This is not a valid nvdb file"),
+              std::string::npos);
 }

@@ -6,9 +6,9 @@
 // The "density" grid is a sphere of radius 1 whose density, in [0, 1], is five octaves of
 // Perlin noise thinning toward the rim; the "temperature" grid (kelvin) is hottest at the
 // centre, for the blackbody emission of a fire. Voxel size 2 / resolution, centred on the
-// origin, zip-compressed.
+// origin, zip-compressed unless asked not to be (the fuzz seeds).
 //
-// Usage: make_nanovdb [--resolution N] out.nvdb
+// Usage: make_nanovdb [--resolution N] [--uncompressed] out.nvdb
 #include "pbrt_ext/util/noise.h"
 
 #include <iostream>  // GridValidator.h, included through IO.h, uses std::cerr
@@ -27,7 +27,7 @@ using namespace pbrt;
 
 namespace {
 
-constexpr const char *kUsage = "usage: make_nanovdb [--resolution N] out.nvdb\n";
+constexpr const char *kUsage = "usage: make_nanovdb [--resolution N] [--uncompressed] out.nvdb\n";
 
 // Density in [0, 1] at p (world units): noise inside the unit sphere, fading out at its rim.
 float SmokeDensity(Point3f p) {
@@ -68,11 +68,14 @@ nanovdb::GridHandle<> Build(const std::string &name, int resolution, F value) {
 
 int main(int argc, char **argv) {
     int resolution = 64;
+    nanovdb::io::Codec codec = nanovdb::io::Codec::ZIP;
     std::string out;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         if (a == "--resolution" && i + 1 < argc)
             resolution = std::atoi(argv[++i]);
+        else if (a == "--uncompressed")
+            codec = nanovdb::io::Codec::NONE;
         else if (!a.empty() && a[0] != '-' && out.empty())
             out = a;
         else {
@@ -88,7 +91,7 @@ int main(int argc, char **argv) {
         std::vector<nanovdb::GridHandle<>> grids;
         grids.push_back(Build("density", resolution, SmokeDensity));
         grids.push_back(Build("temperature", resolution, Temperature));
-        nanovdb::io::writeGrids(out, grids, nanovdb::io::Codec::ZIP);
+        nanovdb::io::writeGrids(out, grids, codec);
     } catch (const std::exception &e) {
         std::cerr << "make_nanovdb: " << out << ": " << e.what() << "\n";
         return 1;
