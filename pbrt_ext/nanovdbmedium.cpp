@@ -1,22 +1,24 @@
 // NanoVDBMedium (media.h): grids read by NanoVDB's own reader (Debian's libnanovdb-dev,
-// header-only; zlib-compressed files too) and checked by its validator before any voxel is
-// touched, since a grid's tree is addressed by offsets stored in the file.
+// header-only; zlib-compressed files too), then checked here before any voxel is looked up:
+// a grid's tree is addressed by byte offsets stored in the file, which NanoVDB trusts.
 #include "pbrt_ext/media.h"
 
-#include <iostream>  // GridValidator.h uses std::cerr without including it
+#include "pbrt_ext/util/resourcelimits.h"
 
+#include <iostream>  // NanoVDB's headers use std::cerr without including it
 #define NANOVDB_USE_ZIP 1
 #include <nanovdb/NanoVDB.h>
 #include <nanovdb/util/GridHandle.h>
-#include <nanovdb/util/GridValidator.h>
 #include <nanovdb/util/IO.h>
 #include <nanovdb/util/SampleFromVoxels.h>
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
+#include <fstream>
+#include <optional>
 #include <cmath>
 #include <string>
+#include <type_traits>
+#include <vector>
 #include <stdexcept>
 
 namespace pbrt {
@@ -30,27 +32,199 @@ namespace {
 
 using TrilinearSampler = nanovdb::SampleFromVoxels<nanovdb::FloatGrid::TreeType, 1, false>;
 
-// Throws unless every voxel of grid satisfies isValid: a density must be finite and >= 0, a
-// temperature finite, whatever bytes a file holds (NanoVDB's validator checks the structure
-// and, where the writer stored one, the checksum; not the values).
-template <typename Check>
-void CheckValues(const nanovdb::FloatGrid &grid, const std::string &what, Check isValid) {
-    const nanovdb::CoordBBox box = grid.indexBBox();
-    auto accessor = grid.getAccessor();
-    for (int k = box.min()[2]; k <= box.max()[2]; ++k)
-        for (int j = box.min()[1]; j <= box.max()[1]; ++j)
-            for (int i = box.min()[0]; i <= box.max()[0]; ++i)
-                if (!isValid(accessor.getValue(nanovdb::Coord(i, j, k))))
-                    throw std::runtime_error(what + " has an invalid value at voxel (" +
-                                             std::to_string(i) + ", " + std::to_string(j) + ", " +
-                                             std::to_string(k) + ")");
+// The sizes of the grids a .nvdb file holds, once read, from walking its container: segments
+// of a header, the grids' metadata with their names, then the grids' (possibly zip-compressed)
+// bytes. NanoVDB's reader trusts every count and size there (a name without its terminating
+// zero is read past its end, a compressed size allocates what it says); the layout is checked
+// here first, so that the reader only ever sees a file whose sizes add up. Throws
+// std::runtime_error.
+std::vector<uint64_t> CheckFileLayout(const std::string &filename) {
+    std::string why;
+    std::optional<uint64_t> size = RegularFileSize(filename, &why);
+    std::ifstream in(filename, std::ios::binary);
+    if (!size || !in)
+        throw std::runtime_error(filename + ": cannot open the file" + (why.empty() ? "" : ": " + why));
+    auto fail = [&](const std::string &fault) {
+        throw std::runtime_error(filename + ": not a valid NanoVDB file: " + fault);
+    };
+    uint64_t at = 0;
+    auto read = [&](void *to, uint64_t n) {
+        if (*size - at < n || !in.seekg(std::streamoff(at)) || !in.read(static_cast<char *>(to), n))
+            fail("it ends early");
+        at += n;
+    };
+    std::vector<uint64_t> gridSizes;
+    while (at < *size) {
+        nanovdb::io::Header header;
+        read(&header, sizeof(header));
+        if (header.magic != NANOVDB_MAGIC_NUMBER)
+            fail("no NanoVDB magic number where a segment starts");
+        if (header.codec != nanovdb::io::Codec::NONE && header.codec != nanovdb::io::Codec::ZIP)
+            fail("a codec other than none or zip");
+        std::vector<nanovdb::io::MetaData> meta(header.gridCount);
+        for (nanovdb::io::MetaData &m : meta) {
+            read(&m, sizeof(m));
+            char name[nanovdb::GridData::MaxNameSize];
+            if (m.nameSize == 0 || m.nameSize > sizeof(name))
+                fail("a grid name of impossible length");
+            read(name, m.nameSize);
+            if (name[m.nameSize - 1] != '\0')
+                fail("a grid name without its end");
+            if (m.gridSize < sizeof(nanovdb::GridData) || m.gridSize % NANOVDB_DATA_ALIGNMENT)
+                fail("a grid size that no grid has");
+        }
+        for (const nanovdb::io::MetaData &m : meta) {
+            if (*size - at < m.fileSize)
+                fail("a grid's data ends early");
+            if (header.codec == nanovdb::io::Codec::NONE && m.fileSize != m.gridSize)
+                fail("an uncompressed grid whose size is not its data's");
+            if (header.codec == nanovdb::io::Codec::ZIP) {
+                uint64_t compressed;
+                read(&compressed, sizeof(compressed));
+                if (compressed != m.fileSize - sizeof(compressed) || m.fileSize < sizeof(compressed))
+                    fail("a compressed grid whose size is not its data's");
+                at -= sizeof(compressed);
+            }
+            at += m.fileSize;
+            gridSizes.push_back(m.gridSize);
+        }
+    }
+    return gridSizes;
+}
+
+using Leaf = nanovdb::FloatGrid::TreeType::LeafNodeType;
+using Lower = nanovdb::FloatGrid::TreeType::Node1;
+using Upper = nanovdb::FloatGrid::TreeType::Node2;
+using Root = nanovdb::FloatGrid::TreeType::RootType;
+
+// The nodes of one level of the tree: NanoVDB stores them back to back.
+struct NodeSection {
+    uintptr_t begin = 0;
+    uint64_t count = 0, stride = 1;
+
+    // Whether address is the start of one of the section's nodes.
+    bool HoldsNode(uintptr_t address) const {
+        return address >= begin && (address - begin) / stride < count &&
+               (address - begin) % stride == 0;
+    }
+    template <typename Node>
+    const Node &operator[](uint64_t i) const {
+        return *reinterpret_cast<const Node *>(begin + i * stride);
+    }
+};
+
+// NanoVDB finds a node's children through byte offsets stored in the file, which its reader
+// and validator follow unchecked. Before anything reads the tree, every offset must land on a
+// node of the next level inside the grid's buffer, every node section must fit in it, and the
+// index-to-world map and bounds must be finite. Throws std::runtime_error saying what is wrong.
+struct TreeLayout {
+    NodeSection leaves, lowers, uppers;
+    const Root *root = nullptr;
+};
+TreeLayout CheckStructure(const nanovdb::FloatGrid &grid, uint64_t bufferSize,
+                          const std::string &what) {
+    auto fail = [&](const std::string &why) {
+        throw std::runtime_error(what + " is corrupt: " + why);
+    };
+    if (bufferSize < sizeof(nanovdb::GridData) + sizeof(nanovdb::FloatGrid::TreeType::DataType) ||
+        grid.gridSize() > bufferSize)
+        fail("its size exceeds the data read");
+    const uintptr_t end = uintptr_t(&grid) + grid.gridSize();
+    const nanovdb::FloatGrid::TreeType::DataType &tree = *grid.tree().data();
+    const uintptr_t treeBegin = uintptr_t(&tree);
+    auto section = [&](int level, uint64_t stride, uint64_t count) {
+        uint64_t offset = tree.mNodeOffset[level], available = end - treeBegin;
+        if (offset > available || (available - offset) / stride < count)
+            fail("a node section lies outside the grid");
+        if ((treeBegin + offset) % NANOVDB_DATA_ALIGNMENT != 0)
+            fail("a node section is misaligned");
+        return NodeSection{treeBegin + offset, count, stride};
+    };
+    TreeLayout layout{section(0, sizeof(Leaf), tree.mNodeCount[0]),
+                      section(1, sizeof(Lower), tree.mNodeCount[1]),
+                      section(2, sizeof(Upper), tree.mNodeCount[2]), nullptr};
+    NodeSection roots = section(3, sizeof(Root), 1);
+    layout.root = &roots.operator[]<Root>(0);
+    const auto *rootData = layout.root->data();
+    uint64_t tiles = rootData->mTableSize;
+    if ((end - (roots.begin + sizeof(Root))) / sizeof(typename Root::DataType::Tile) < tiles)
+        fail("the root's tiles lie outside the grid");
+    for (uint64_t n = 0; n < tiles; ++n)
+        if (int64_t child = rootData->tile(uint32_t(n))->child;
+            child && !layout.uppers.HoldsNode(uintptr_t(rootData) + uint64_t(child)))
+            fail("a root tile points outside the upper nodes");
+    auto checkChildren = [&](const NodeSection &nodes, const NodeSection &children, auto *tag) {
+        using Node = std::remove_pointer_t<decltype(tag)>;
+        for (uint64_t i = 0; i < nodes.count; ++i) {
+            const auto *data = nodes.operator[]<Node>(i).data();
+            for (uint32_t n = 0; n < Node::SIZE; ++n)
+                if (data->mChildMask.isOn(n) &&
+                    !children.HoldsNode(uintptr_t(data) + uint64_t(data->mTable[n].child)))
+                    fail("an internal node points outside the next level's nodes");
+        }
+    };
+    checkChildren(layout.uppers, layout.lowers, static_cast<const Upper *>(nullptr));
+    checkChildren(layout.lowers, layout.leaves, static_cast<const Lower *>(nullptr));
+    const nanovdb::Map &map = grid.map();
+    for (int i = 0; i < 9; ++i)
+        if (!std::isfinite(map.mMatF[i]) || !std::isfinite(map.mInvMatF[i]))
+            fail("its index-to-world map is not finite");
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(map.mVecF[i]) || !std::isfinite(grid.worldBBox().min()[i]) ||
+            !std::isfinite(grid.worldBBox().max()[i]))
+            fail("its map or bounds are not finite");
+    return layout;
+}
+
+// Calls f(value, lo, hi) for every value a lookup in the grid can return, with the inclusive
+// index box it fills: each voxel of each leaf, each tile of the internal nodes and the root,
+// and the background (everywhere). Only for a grid that CheckStructure accepted.
+template <typename F>
+void ForEachValue(const nanovdb::FloatGrid &grid, const TreeLayout &layout, F f) {
+    const int big = 1 << 30;
+    f(grid.tree().background(), nanovdb::Coord(-big), nanovdb::Coord(big));
+    for (uint64_t i = 0; i < layout.leaves.count; ++i) {
+        const Leaf &leaf = layout.leaves.operator[]<Leaf>(i);
+        for (uint32_t n = 0; n < Leaf::SIZE; ++n) {
+            nanovdb::Coord c = leaf.offsetToGlobalCoord(n);
+            f(leaf.getValue(n), c, c);
+        }
+    }
+    auto tiles = [&](const NodeSection &nodes, auto *tag) {
+        using Node = std::remove_pointer_t<decltype(tag)>;
+        for (uint64_t i = 0; i < nodes.count; ++i) {
+            const Node &node = nodes.operator[]<Node>(i);
+            for (uint32_t n = 0; n < Node::SIZE; ++n)
+                if (!node.data()->mChildMask.isOn(n)) {
+                    nanovdb::Coord lo = node.offsetToGlobalCoord(n);
+                    f(node.data()->mTable[n].value, lo, lo + nanovdb::Coord(Node::ChildNodeType::DIM - 1));
+                }
+        }
+    };
+    tiles(layout.lowers, static_cast<const Lower *>(nullptr));
+    tiles(layout.uppers, static_cast<const Upper *>(nullptr));
+    const auto *rootData = layout.root->data();
+    for (uint32_t n = 0; n < rootData->mTableSize; ++n)
+        if (const auto *tile = rootData->tile(n); !tile->child)
+            f(tile->value, tile->origin(), tile->origin() + nanovdb::Coord(Upper::DIM - 1));
+}
+
+// Throws unless every value of the grid is finite, and non-negative if it is a density.
+void CheckValues(const nanovdb::FloatGrid &grid, const TreeLayout &layout, bool density,
+                 const std::string &what) {
+    ForEachValue(grid, layout, [&](float v, nanovdb::Coord, nanovdb::Coord) {
+        if (!std::isfinite(v) || (density && v < 0))
+            throw std::runtime_error(what + " has a " + (density ? "negative or " : "") +
+                                     "non-finite value");
+    });
 }
 
 // The float grid gridName of the file, validated (densities >= 0: it is the density grid if
 // its name is densityName); null if the file has no grid of that name and it is optional.
 const nanovdb::FloatGrid *ReadGrid(const std::string &filename, const std::string &gridName,
                                    const std::string &densityName, bool required,
-                                   nanovdb::GridHandle<nanovdb::HostBuffer> *handle) {
+                                   nanovdb::GridHandle<nanovdb::HostBuffer> *handle,
+                                   TreeLayout *layout) {
     std::string what = filename + ": grid \"" + gridName + "\"";
     try {
         *handle = nanovdb::io::readGrid<nanovdb::HostBuffer>(filename, gridName);
@@ -65,13 +239,10 @@ const nanovdb::FloatGrid *ReadGrid(const std::string &filename, const std::strin
     const nanovdb::FloatGrid *grid = handle->grid<float>();
     if (!grid)
         throw std::runtime_error(what + " does not hold floats");
-    if (!nanovdb::isValid(*grid, true, false))
-        throw std::runtime_error(what + " is corrupt (NanoVDB's validator rejects it)");
+    *layout = CheckStructure(*grid, handle->size(), what);
     if (!grid->isFogVolume() && !grid->isUnknown())
         throw std::runtime_error(what + " is not a fog volume");
-    CheckValues(*grid, what, [&](float v) {
-        return std::isfinite(v) && (v >= 0 || gridName != densityName);
-    });
+    CheckValues(*grid, *layout, gridName == densityName, what);
     return grid;
 }
 
@@ -81,33 +252,47 @@ Bounds3f WorldBounds(const nanovdb::FloatGrid &grid) {
                     Point3f(b.max()[0], b.max()[1], b.max()[2]));
 }
 
-// pbrt-v4's majorants: for each voxel of a 64^3 grid over the bounds, the largest density
-// sample within it, one index-space voxel wider for the trilinear filter's reach.
+// The majorants of a 64^3 grid over the bounds (pbrt-v4's resolution): each value of the
+// density grid raises the majorant of every voxel that a trilinear lookup reaching it can fall
+// in (its index box grown by one voxel, carried to world space). pbrt-v4 scans every index
+// voxel of every majorant voxel instead; visiting the stored values costs what the file holds
+// whatever its bounds claim. Past a budget of voxel visits (a file of many large tiles), the
+// grid's largest value serves everywhere, which still bounds it.
 std::shared_ptr<const MajorantGrid> DensityMajorants(const nanovdb::FloatGrid &density,
+                                                     const TreeLayout &layout,
                                                      const Bounds3f &bounds) {
     auto grid = std::make_shared<MajorantGrid>(bounds, Point3i(64, 64, 64));
-    const nanovdb::CoordBBox indexBox = density.indexBBox();
-    int n = grid->res.x * grid->res.y * grid->res.z;
-    tbb::parallel_for(0, n, [&](int index) {
-        int x = index % grid->res.x, y = (index / grid->res.x) % grid->res.y,
-            z = index / (grid->res.x * grid->res.y);
-        Bounds3f voxel = grid->VoxelBounds(x, y, z);
-        Point3f w0 = bounds.Lerp(voxel.pMin), w1 = bounds.Lerp(voxel.pMax);
-        auto i0 = density.worldToIndexF(nanovdb::Vec3f(w0.x, w0.y, w0.z));
-        auto i1 = density.worldToIndexF(nanovdb::Vec3f(w1.x, w1.y, w1.z));
-        int lo[3], hi[3];
-        for (int a = 0; a < 3; ++a) {
-            lo[a] = std::max(int(std::min(i0[a], i1[a]) - 1), indexBox.min()[a]);
-            hi[a] = std::min(int(std::max(i0[a], i1[a]) + 1), indexBox.max()[a]);
+    constexpr uint64_t kVisitBudget = uint64_t(1) << 27;
+    uint64_t visits = 0;
+    float largest = 0;
+    ForEachValue(density, layout, [&](float v, nanovdb::Coord lo, nanovdb::Coord hi) {
+        if (v <= 0)
+            return;
+        largest = std::max(largest, v);
+        if (visits > kVisitBudget)
+            return;
+        Bounds3f world;
+        for (int corner = 0; corner < 8; ++corner) {
+            nanovdb::Vec3f c(corner & 1 ? hi[0] + 1.f : lo[0] - 1.f,
+                             corner & 2 ? hi[1] + 1.f : lo[1] - 1.f,
+                             corner & 4 ? hi[2] + 1.f : lo[2] - 1.f);
+            nanovdb::Vec3f w = density.indexToWorldF(c);
+            world = Union(world, Point3f(w[0], w[1], w[2]));
         }
-        auto accessor = density.getAccessor();
-        float maxValue = 0;
-        for (int k = lo[2]; k <= hi[2]; ++k)
-            for (int j = lo[1]; j <= hi[1]; ++j)
-                for (int i = lo[0]; i <= hi[0]; ++i)
-                    maxValue = std::max(maxValue, accessor.getValue(nanovdb::Coord(i, j, k)));
-        grid->Set(x, y, z, maxValue);
+        Vector3f from = bounds.Offset(world.pMin), to = bounds.Offset(world.pMax);
+        int v0[3], v1[3];
+        for (int a = 0; a < 3; ++a) {
+            v0[a] = int(std::clamp(from[a] * grid->res[a], 0.f, grid->res[a] - 1.f));
+            v1[a] = int(std::clamp(to[a] * grid->res[a], 0.f, grid->res[a] - 1.f));
+        }
+        visits += uint64_t(v1[0] - v0[0] + 1) * (v1[1] - v0[1] + 1) * (v1[2] - v0[2] + 1);
+        for (int z = v0[2]; z <= v1[2]; ++z)
+            for (int y = v0[1]; y <= v1[1]; ++y)
+                for (int x = v0[0]; x <= v1[0]; ++x)
+                    grid->Set(x, y, z, std::max(grid->Lookup(x, y, z), v));
     });
+    if (visits > kVisitBudget)
+        std::fill(grid->voxels.begin(), grid->voxels.end(), largest);
     return grid;
 }
 
@@ -122,25 +307,23 @@ NanoVDBMedium::NanoVDBMedium(const std::string &filename, const std::string &den
       sigma_s(TabulatedForLookup(sigma_s)), sigmaScale(sigmaScale), phase(g), LeScale(LeScale),
       temperatureOffset(temperatureOffset), temperatureScale(temperatureScale) {
     auto loaded = std::make_shared<Grids>();
-    loaded->density = ReadGrid(filename, densityName, densityName, true, &loaded->densityHandle);
-    loaded->temperature =
-        ReadGrid(filename, temperatureName, densityName, false, &loaded->temperatureHandle);
+    TreeLayout densityLayout, temperatureLayout;
+    loaded->density = ReadGrid(filename, densityName, densityName, true, &loaded->densityHandle,
+                               &densityLayout);
+    loaded->temperature = ReadGrid(filename, temperatureName, densityName, false,
+                                   &loaded->temperatureHandle, &temperatureLayout);
     bounds = WorldBounds(*loaded->density);
     if (loaded->temperature)
         bounds = Union(bounds, WorldBounds(*loaded->temperature));
-    majorantGrid = DensityMajorants(*loaded->density, bounds);
+    majorantGrid = DensityMajorants(*loaded->density, densityLayout, bounds);
     grids = std::move(loaded);
 }
 
 uint64_t NanoVDBMedium::GridBytes(const std::string &filename) {
-    try {
-        uint64_t bytes = 0;
-        for (const nanovdb::io::GridMetaData &grid : nanovdb::io::readGridMetaData(filename))
-            bytes = grid.gridSize > UINT64_MAX - bytes ? UINT64_MAX : bytes + grid.gridSize;
-        return bytes;
-    } catch (const std::exception &e) {
-        throw std::runtime_error(filename + ": " + e.what());
-    }
+    uint64_t bytes = 0;
+    for (uint64_t size : CheckFileLayout(filename))
+        bytes = size > UINT64_MAX - bytes ? UINT64_MAX : bytes + size;
+    return bytes;
 }
 
 bool NanoVDBMedium::IsEmissive() const { return grids->temperature && LeScale > 0; }
