@@ -128,6 +128,8 @@ class DDAMajorantIterator {
 class HomogeneousMedium {
   public:
     using MajorantIterator = HomogeneousMajorantIterator;
+    // SamplePoint does not depend on the point: SampleT_maj evaluates it once per ray.
+    static constexpr bool kUniform = true;
 
     // sigma_a and sigma_s are multiplied by sigmaScale, Le by LeScale.
     HomogeneousMedium(Spectrum sigma_a, Spectrum sigma_s, Float sigmaScale, Spectrum Le,
@@ -327,6 +329,11 @@ SampledSpectrum Medium::SampleT_majIn(const M &medium, Ray ray, Float tMax, Floa
     tMax *= length;
     ray.d = ray.d / length;
     typename M::MajorantIterator iter = medium.SampleRay(ray, tMax, lambda);
+    // A medium that is the same everywhere is evaluated once, not at every collision.
+    constexpr bool uniform = requires { M::kUniform; };
+    std::optional<MediumProperties> uniformProperties;
+    if constexpr (uniform)
+        uniformProperties = medium.SamplePoint(ray.o, lambda);
     // An infinite segment (a ray escaping a medium with no boundary) has finite optical depth
     // only where sigma_maj is 0; the largest float keeps 0 * dt at 0.
     auto finite = [](Float dt) { return std::isinf(dt) ? std::numeric_limits<Float>::max() : dt; };
@@ -345,7 +352,8 @@ SampledSpectrum Medium::SampleT_majIn(const M &medium, Ray ray, Float tMax, Floa
             }
             T_maj *= Exp(-(t - tMin) * seg->sigma_maj);
             Point3f p = ray(t);
-            if (!callback(p, medium.SamplePoint(p, lambda), seg->sigma_maj, T_maj))
+            if (!callback(p, uniform ? *uniformProperties : medium.SamplePoint(p, lambda),
+                          seg->sigma_maj, T_maj))
                 return SampledSpectrum(1.f);
             T_maj = SampledSpectrum(1.f);
             tMin = t;

@@ -30,7 +30,11 @@ struct NanoVDBMedium::Grids {
 
 namespace {
 
-using TrilinearSampler = nanovdb::SampleFromVoxels<nanovdb::FloatGrid::TreeType, 1, false>;
+// Trilinear lookups through a read accessor, which caches the path to the last leaf: the
+// eight samples of a lookup, and most lookups along a ray, share it (pbrt-v4 walks the tree from
+// its root for each of the eight).
+using Accessor = nanovdb::FloatGrid::AccessorType;
+using TrilinearSampler = nanovdb::SampleFromVoxels<Accessor, 1, false>;
 
 // The sizes of the grids a .nvdb file holds, once read, from walking its container: segments
 // of a header, the grids' metadata with their names, then the grids' (possibly zip-compressed)
@@ -173,6 +177,15 @@ TreeLayout CheckStructure(const nanovdb::FloatGrid &grid, uint64_t bufferSize,
         if (!std::isfinite(map.mVecF[i]) || !std::isfinite(grid.worldBBox().min()[i]) ||
             !std::isfinite(grid.worldBBox().max()[i]))
             fail("its map or bounds are not finite");
+    // Lookups happen inside the bounds, at index coordinates that must fit an int.
+    const auto &box = grid.worldBBox();
+    for (int corner = 0; corner < 8; ++corner) {
+        nanovdb::Vec3f index = grid.worldToIndexF(
+            nanovdb::Vec3f(box[corner & 1][0], box[(corner >> 1) & 1][1], box[corner >> 2][2]));
+        for (int i = 0; i < 3; ++i)
+            if (!(std::abs(index[i]) < float(1 << 30)))
+                fail("its bounds lie outside the index range");
+    }
     return layout;
 }
 
@@ -236,8 +249,15 @@ const nanovdb::FloatGrid *ReadGrid(const std::string &filename, const std::strin
             throw std::runtime_error(what + " not found");
         return nullptr;
     }
-    const nanovdb::FloatGrid *grid = handle->grid<float>();
-    if (!grid)
+    // The buffer holds the one grid read (GridHandle::grid() would follow the file's grid index
+    // and sizes through other grids that are not there).
+    if (handle->size() < sizeof(nanovdb::GridData) ||
+        uintptr_t(handle->data()) % NANOVDB_DATA_ALIGNMENT != 0)
+        throw std::runtime_error(what + " is corrupt: shorter than a grid");
+    const auto *grid = reinterpret_cast<const nanovdb::FloatGrid *>(handle->data());
+    if (!grid->isValid())
+        throw std::runtime_error(what + " is corrupt: no magic number");
+    if (grid->gridType() != nanovdb::GridType::Float)
         throw std::runtime_error(what + " does not hold floats");
     *layout = CheckStructure(*grid, handle->size(), what);
     if (!grid->isFogVolume() && !grid->isUnknown())
@@ -331,10 +351,10 @@ bool NanoVDBMedium::IsEmissive() const { return grids->temperature && LeScale > 
 MediumProperties NanoVDBMedium::SamplePoint(Point3f p, const SampledWavelengths &lambda) const {
     p = renderFromMedium.ApplyInverse(p);
     nanovdb::Vec3f pw(p.x, p.y, p.z);
-    Float d = TrilinearSampler(grids->density->tree())(grids->density->worldToIndexF(pw));
+    Float d = TrilinearSampler(grids->density->getAccessor())(grids->density->worldToIndexF(pw));
     SampledSpectrum Le(0.f);
     if (grids->temperature && LeScale > 0) {
-        Float T = TrilinearSampler(grids->temperature->tree())(
+        Float T = TrilinearSampler(grids->temperature->getAccessor())(
             grids->temperature->worldToIndexF(pw));
         T = (T - temperatureOffset) * temperatureScale;
         // pbrt-v4 emits nothing at or below 100 K.
