@@ -63,6 +63,10 @@ std::vector<uint64_t> CheckFileLayout(const std::string &filename) {
         read(&header, sizeof(header));
         if (header.magic != NANOVDB_MAGIC_NUMBER)
             fail("no NanoVDB magic number where a segment starts");
+        // (NanoVDB's own message for this leaks the version string it formats.)
+        if (header.version.getMajor() != NANOVDB_MAJOR_VERSION_NUMBER)
+            fail("written by NanoVDB " + std::to_string(header.version.getMajor()) +
+                 ".x; this build reads " + std::to_string(NANOVDB_MAJOR_VERSION_NUMBER) + ".x");
         if (header.codec != nanovdb::io::Codec::NONE && header.codec != nanovdb::io::Codec::ZIP)
             fail("a codec other than none or zip");
         std::vector<nanovdb::io::MetaData> meta(header.gridCount);

@@ -3,6 +3,7 @@
 #include "pbrt_ext/integrators.h"
 #include "pbrt_ext/scene.h"
 #include "pbrt_ext/volpath.h"
+#include "pbrt_ext/util/log.h"
 #include "pbrt_ext/util/progressreporter.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -114,10 +115,14 @@ RenderStatistics Render(Scene &scene, const RenderOptions &options) {
             tbb::global_control::max_allowed_parallelism, options.nThreads);
     // The volumetric path tracer only where there are media to render.
     using Integrator = std::variant<PathIntegrator, VolPathIntegrator>;
+    const bool volumetric = scene.integratorOptions.volumetric && !scene.media.empty();
+    if (volumetric && scene.integratorOptions.strategy != PathStrategy::MIS && !options.quiet)
+        Warning("--strategy %s applies to the path integrator; volpath combines its estimators "
+                "by MIS",
+                ToString(scene.integratorOptions.strategy).c_str());
     const Integrator integrator =
-        scene.integratorOptions.volumetric && !scene.media.empty()
-            ? Integrator(VolPathIntegrator(scene, scene.integratorOptions))
-            : Integrator(PathIntegrator(scene, scene.integratorOptions));
+        volumetric ? Integrator(VolPathIntegrator(scene, scene.integratorOptions))
+                   : Integrator(PathIntegrator(scene, scene.integratorOptions));
     const Bounds2i pixels = scene.film.PixelBounds();
     const std::vector<Bounds2i> tiles = Tiles(pixels);
     std::vector<int> tileSamples(tiles.size(), 0);  // every pixel of tile t has [0, tileSamples[t])
