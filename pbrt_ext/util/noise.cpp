@@ -2,6 +2,8 @@
 
 #include "pbrt_ext/util/math.h"
 
+#include <array>
+
 #include <cmath>
 
 namespace pbrt {
@@ -32,12 +34,26 @@ constexpr int kPermutation[256] = {
 
 int Perm(int i) { return kPermutation[i & 255]; }
 
-// pbrt-v4's gradient for the lattice point (x, y, z), dotted with the offset (dx, dy, dz).
-Float Grad(int x, int y, int z, Float dx, Float dy, Float dz) {
-    int h = Perm(Perm(Perm(x) + y) + z) & 15;
-    Float u = h < 8 || h == 12 || h == 13 ? dx : dy;
-    Float v = h < 4 || h == 12 || h == 13 ? dy : dz;
-    return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
+// pbrt-v4's 16 gradients: hash h picks u (dx for h < 8, 12 and 13, else dy) and v (dy for h < 4,
+// 12 and 13, else dz), with signs from bits 0 and 1. As coefficients of (dx, dy, dz) each has
+// exactly two nonzero, so the dot product adds the same two terms pbrt-v4 adds.
+struct Gradient {
+    Float x, y, z;
+};
+constexpr std::array<Gradient, 16> MakeGradients() {
+    std::array<Gradient, 16> g{};
+    for (int h = 0; h < 16; ++h) {
+        Float su = (h & 1) ? -1 : 1, sv = (h & 2) ? -1 : 1;
+        bool uIsX = h < 8 || h == 12 || h == 13, vIsY = h < 4 || h == 12 || h == 13;
+        g[h] = {uIsX ? su : 0, (uIsX ? 0 : su) + (vIsY ? sv : 0), vIsY ? 0 : sv};
+    }
+    return g;
+}
+constexpr std::array<Gradient, 16> kGradients = MakeGradients();
+
+Float Grad(int hash, Float dx, Float dy, Float dz) {
+    const Gradient &g = kGradients[hash & 15];
+    return g.x * dx + g.y * dy + g.z * dz;
 }
 
 // Perlin's quintic fade, 6t^5 - 15t^4 + 10t^3.
@@ -59,14 +75,17 @@ Float Noise(Float x, Float y, Float z) {
     ix &= 255;
     iy &= 255;
     iz &= 255;
-    Float w000 = Grad(ix, iy, iz, dx, dy, dz);
-    Float w100 = Grad(ix + 1, iy, iz, dx - 1, dy, dz);
-    Float w010 = Grad(ix, iy + 1, iz, dx, dy - 1, dz);
-    Float w110 = Grad(ix + 1, iy + 1, iz, dx - 1, dy - 1, dz);
-    Float w001 = Grad(ix, iy, iz + 1, dx, dy, dz - 1);
-    Float w101 = Grad(ix + 1, iy, iz + 1, dx - 1, dy, dz - 1);
-    Float w011 = Grad(ix, iy + 1, iz + 1, dx, dy - 1, dz - 1);
-    Float w111 = Grad(ix + 1, iy + 1, iz + 1, dx - 1, dy - 1, dz - 1);
+    // The lattice hash Perm(Perm(Perm(x) + y) + z) of the 8 corners, sharing its first levels.
+    int x0 = Perm(ix), x1 = Perm(ix + 1);
+    int x0y0 = Perm(x0 + iy), x0y1 = Perm(x0 + iy + 1), x1y0 = Perm(x1 + iy), x1y1 = Perm(x1 + iy + 1);
+    Float w000 = Grad(Perm(x0y0 + iz), dx, dy, dz);
+    Float w100 = Grad(Perm(x1y0 + iz), dx - 1, dy, dz);
+    Float w010 = Grad(Perm(x0y1 + iz), dx, dy - 1, dz);
+    Float w110 = Grad(Perm(x1y1 + iz), dx - 1, dy - 1, dz);
+    Float w001 = Grad(Perm(x0y0 + iz + 1), dx, dy, dz - 1);
+    Float w101 = Grad(Perm(x1y0 + iz + 1), dx - 1, dy, dz - 1);
+    Float w011 = Grad(Perm(x0y1 + iz + 1), dx, dy - 1, dz - 1);
+    Float w111 = Grad(Perm(x1y1 + iz + 1), dx - 1, dy - 1, dz - 1);
     Float wx = Fade(dx), wy = Fade(dy), wz = Fade(dz);
     Float y0 = Lerp(wy, Lerp(wx, w000, w100), Lerp(wx, w010, w110));
     Float y1 = Lerp(wy, Lerp(wx, w001, w101), Lerp(wx, w011, w111));
