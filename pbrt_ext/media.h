@@ -337,29 +337,31 @@ SampledSpectrum Medium::SampleT_majIn(const M &medium, Ray ray, Float tMax, Floa
     // An infinite segment (a ray escaping a medium with no boundary) has finite optical depth
     // only where sigma_maj is 0; the largest float keeps 0 * dt at 0.
     auto finite = [](Float dt) { return std::isinf(dt) ? std::numeric_limits<Float>::max() : dt; };
-    SampledSpectrum T_maj(1.f);
+    // The majorant's optical depth since the last collision, exponentiated only where a
+    // transmittance is needed (one exp per collision instead of one per segment).
+    SampledSpectrum tau(0.f);
     while (std::optional<RayMajorantSegment> seg = iter.Next()) {
         if (seg->sigma_maj[0] == 0) {
-            T_maj *= Exp(-finite(seg->tMax - seg->tMin) * seg->sigma_maj);
+            tau += finite(seg->tMax - seg->tMin) * seg->sigma_maj;
             continue;
         }
         for (Float tMin = seg->tMin;;) {
             Float t = tMin + SampleExponential(u, seg->sigma_maj[0]);
             u = rng.Uniform<Float>();
             if (t >= seg->tMax) {
-                T_maj *= Exp(-finite(seg->tMax - tMin) * seg->sigma_maj);
+                tau += finite(seg->tMax - tMin) * seg->sigma_maj;
                 break;
             }
-            T_maj *= Exp(-(t - tMin) * seg->sigma_maj);
+            SampledSpectrum T_maj = Exp(-(tau + (t - tMin) * seg->sigma_maj));
             Point3f p = ray(t);
             if (!callback(p, uniform ? *uniformProperties : medium.SamplePoint(p, lambda),
                           seg->sigma_maj, T_maj))
                 return SampledSpectrum(1.f);
-            T_maj = SampledSpectrum(1.f);
+            tau = SampledSpectrum(0.f);
             tMin = t;
         }
     }
-    return T_maj;
+    return Exp(-tau);
 }
 
 }  // namespace pbrt
