@@ -29,6 +29,25 @@ TEST(LowDiscrepancy, BitHelpers) {
     EXPECT_EQ(SobolBits(6, 0), 0x60000000u);  // van der Corput: 0.011b
 }
 
+TEST(SobolBits, DimensionOneTablesEqualTheColumnRecurrence) {
+    // The byte tables against the matrix they tabulate: c_0 = 2^31, c_k = c_(k-1) ^ (c_(k-1) >> 1).
+    auto direct = [](uint64_t a) {
+        uint32_t v = 0, column = 0x80000000u;
+        for (; a != 0; a >>= 1) {
+            if (a & 1) v ^= column;
+            column ^= column >> 1;
+        }
+        return v;
+    };
+    RNG rng(3);
+    for (int i = 0; i < 100000; ++i) {
+        uint64_t a = rng.Uniform<uint64_t>() >> (i % 64);
+        ASSERT_EQ(SobolBits(a, 1), direct(a)) << a;
+    }
+    for (uint64_t a : {uint64_t(0), ~uint64_t(0), uint64_t(1) << 63, uint64_t(255) << 56})
+        EXPECT_EQ(SobolBits(a, 1), direct(a)) << a;
+}
+
 TEST(LowDiscrepancy, PermutationElementIsAPermutation) {
     for (uint32_t l : {1u, 2u, 3u, 7u, 16u, 33u, 100u})
         for (uint32_t p : {0u, 1u, 0xdeadbeefu, 12345u}) {

@@ -107,14 +107,26 @@ enum class RandomizeStrategy { None, PermuteDigits, FastOwen, Owen };
 // Sobol' samplers use. Their generator matrices follow from the primitive polynomials x and x + 1: column k
 // of dimension 0 is 2^(31-k) (the van der Corput sequence); dimension 1's columns obey
 // c_k = c_(k-1) ^ (c_(k-1) >> 1) from c_0 = 2^31 (Pascal's triangle mod 2), so no table is needed.
+// Dimension 1's value is looked up a byte of the index at a time: entry v of table b is the XOR
+// of the columns 8b .. 8b + 7 that v's bits select (8 KiB, made at compile time).
+using SobolByteTables = std::array<std::array<uint32_t, 256>, 8>;
+constexpr SobolByteTables MakeSobolDimension1Tables() {
+    std::array<uint32_t, 64> column{0x80000000u};
+    for (int k = 1; k < 64; ++k) column[k] = column[k - 1] ^ (column[k - 1] >> 1);
+    SobolByteTables tables{};
+    for (int b = 0; b < 8; ++b)
+        for (int v = 0; v < 256; ++v)
+            for (int i = 0; i < 8; ++i)
+                if (v & (1 << i)) tables[b][v] ^= column[8 * b + i];
+    return tables;
+}
+PBRT_CONST SobolByteTables kSobolDimension1Tables = MakeSobolDimension1Tables();
+
 PBRT_CPU_GPU inline uint32_t SobolBits(uint64_t a, int dimension) {
     if (dimension == 0)
         return ReverseBits32(uint32_t(a));  // the van der Corput columns, all at once
-    uint32_t v = 0, column = 0x80000000u;
-    for (; a != 0; a >>= 1) {
-        if (a & 1) v ^= column;
-        column ^= column >> 1;
-    }
+    uint32_t v = 0;
+    for (int b = 0; a != 0; ++b, a >>= 8) v ^= kSobolDimension1Tables[b][a & 255];
     return v;
 }
 
