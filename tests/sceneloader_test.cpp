@@ -353,3 +353,53 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
                         "segment starts"),
               std::string::npos);
 }
+
+
+// Media reach the surfaces that bound them, in the world and inside object instances, and the
+// camera; a medium nothing names is never created; path and volpath are chosen as pbrt-v4 would.
+TEST(SceneLoaderMedia, InterfacesInstancesAndTheCameraGetTheirMedia) {
+    std::string file = WriteScene("media.pbrt", R"(LookAt 0 0 5  0 0 0  0 1 0
+MakeNamedMedium "air" "string type" "homogeneous" "rgb sigma_s" [0.1 0.1 0.1]
+MediumInterface "" "air"
+Camera "perspective" "float fov" 30
+Film "rgb" "integer xresolution" 8 "integer yresolution" 8
+WorldBegin
+MakeNamedMedium "unused" "string type" "nanovdb" "string filename" "no-such-file.nvdb"
+MakeNamedMedium "ink" "string type" "homogeneous" "rgb sigma_a" [1 2 3]
+ObjectBegin "drop"
+  MediumInterface "ink" "air"
+  Material "interface"
+  Shape "sphere" "float radius" 0.5
+ObjectEnd
+AttributeBegin
+  Translate 2 0 0
+  ObjectInstance "drop"
+AttributeEnd
+)");
+    Log().quiet = true;
+    std::unique_ptr<Scene> scene = LoadScene(file, Quick());
+    ASSERT_EQ(scene->media.size(), 2u);  // "unused" (a missing file) was never read
+    EXPECT_EQ(scene->cameraMedium, 0);   // "air", made first for the camera
+    EXPECT_TRUE(scene->integratorOptions.volumetric);  // pbrt-v4's default integrator
+    pstd::optional<ShapeIntersection> hit =
+        scene->Intersect(Ray(Point3f(2, 0, 5), Vector3f(0, 0, -1), 0));
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->intr.p.z, 0.5f, 1e-4f);
+    EXPECT_EQ(hit->intr.mediumInterface, MediumInterface(1, 0));  // ink inside, air outside
+    EXPECT_EQ(hit->intr.GetMedium(Vector3f(0, 0, -1)), 1);        // into the drop
+    EXPECT_EQ(hit->intr.SpawnRay(Vector3f(0, 0, -1)).medium, 1);
+    EXPECT_EQ(hit->intr.SpawnRay(Vector3f(0, 0, 1)).medium, 0);
+}
+
+TEST(SceneLoaderMedia, SurfacesThatBoundNoMediumKeepTheRaysMedium) {
+    std::string file = WriteScene("keep.pbrt", std::string(kHeader) + R"(
+Material "diffuse"
+Shape "sphere" "float radius" 0.5
+)");
+    std::unique_ptr<Scene> scene = LoadScene(file, Quick());
+    pstd::optional<ShapeIntersection> hit =
+        scene->Intersect(Ray(Point3f(0, 0, 5), Vector3f(0, 0, -1), 3));
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->intr.mediumInterface, MediumInterface(3));
+    EXPECT_TRUE(scene->media.empty());
+}
