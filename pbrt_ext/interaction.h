@@ -20,6 +20,9 @@ struct SurfaceInteraction {
     struct {
         Normal3f n;
         Vector3f dpdu, dpdv;
+        // How the shading normal turns across the surface (pbrt-v4's dndu, dndv), for bump
+        // mapping: from the vertex normals of a mesh, dpdu / r on a sphere, zero where flat.
+        Normal3f dndu, dndv;
     } shading;
     int materialIndex = -1;   // into Scene::materials; -1: no material (an interface)
     int areaLightIndex = -1;  // into Scene::lights; -1: not emissive

@@ -117,8 +117,9 @@ struct ShadingFrame {
 };
 
 // pbrt-v4's BumpMap: the surface displaced along the shading normal by d(u, v), differentiated by
-// forward differences. Without ray differentials the step is pbrt-v4's fallback of 0.0005 in (u,
-// v); without dn/du the terms d * dn/du are dropped (exact for flat and polygonal surfaces).
+// forward differences, plus d times the turning of the normal itself (dn/du, dn/dv: large where a
+// big displacement meets curved shading normals). Without ray differentials the step is
+// pbrt-v4's fallback of 0.0005 in (u, v).
 ShadingFrame BumpMap(const FloatTexture &displacement, const SurfaceInteraction &si) {
     constexpr Float du = 0.0005f, dv = 0.0005f;
     TextureEvalContext ctx(si);
@@ -131,8 +132,8 @@ ShadingFrame BumpMap(const FloatTexture &displacement, const SurfaceInteraction 
     shifted.uv = Point2f(si.uv[0], si.uv[1] + dv);
     Float dV = displacement.Evaluate(shifted);
     Vector3f n(si.shading.n);
-    Vector3f dpdu = si.shading.dpdu + (dU - d) / du * n;
-    Vector3f dpdv = si.shading.dpdv + (dV - d) / dv * n;
+    Vector3f dpdu = si.shading.dpdu + (dU - d) / du * n + d * Vector3f(si.shading.dndu);
+    Vector3f dpdv = si.shading.dpdv + (dV - d) / dv * n + d * Vector3f(si.shading.dndv);
     Normal3f ns(Normalize(Cross(dpdu, dpdv)));
     if (!IsFinite(ns.x) || LengthSquared(Vector3f(ns)) == 0)
         return {si.shading.n, si.shading.dpdu};

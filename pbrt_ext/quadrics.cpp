@@ -126,8 +126,13 @@ SurfaceInteraction Sphere::InteractionFromIntersection(const QuadricIntersection
     Vector3f dpdu(-phiMax * p.y, phiMax * p.x, 0);
     Vector3f dpdv = (thetaZMax - thetaZMin) *
                     Vector3f(p.z * cosPhi, p.z * sinPhi, -radius * sinTheta);
-    SurfaceInteraction si = TransformInteraction(
-        worldFromObject, MakeInteraction(p, UV(p), Vector3f(), dpdu, dpdv, FlipNormal()));
+    SurfaceInteraction local = MakeInteraction(p, UV(p), Vector3f(), dpdu, dpdv, FlipNormal());
+    // The outward normal is p / r, so it turns as p does (the Weingarten equations' answer for a
+    // sphere); a flipped normal turns the other way.
+    Float sign = FlipNormal() ? -1 : 1;
+    local.shading.dndu = Normal3f(sign * dpdu / radius);
+    local.shading.dndv = Normal3f(sign * dpdv / radius);
+    SurfaceInteraction si = TransformInteraction(worldFromObject, local);
     si.wo = wo;
     return si;
 }

@@ -92,6 +92,8 @@ SurfaceInteraction TransformInteraction(const Transform &t, const SurfaceInterac
     r.shading.n = FaceForward(Normalize(t(si.shading.n)), r.n);
     r.shading.dpdu = t(si.shading.dpdu);
     r.shading.dpdv = t(si.shading.dpdv);
+    r.shading.dndu = t(si.shading.dndu);
+    r.shading.dndv = t(si.shading.dndv);
     if (LengthSquared(si.wo) > 0)
         r.wo = Normalize(t(si.wo));
     return r;

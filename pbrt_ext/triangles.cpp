@@ -99,6 +99,28 @@ std::array<Point2f, 3> TriangleUV(const TriangleMesh *mesh, const int *v) {
     return {mesh->uv[v[0]], mesh->uv[v[1]], mesh->uv[v[2]]};
 }
 
+// How the interpolated vertex normal turns with u and v (pbrt-v4's Triangle dndu, dndv): the
+// normals' differences across the edges solved like dp/du and dp/dv; with degenerate uv, any
+// two directions across the normals' change.
+void NormalDerivatives(const TriangleMesh *mesh, const int *v, Vector2f duv02, Vector2f duv12,
+                       bool degenerateUV, SurfaceInteraction *si) {
+    Normal3f n0 = mesh->n[v[0]], n1 = mesh->n[v[1]], n2 = mesh->n[v[2]];
+    if (degenerateUV) {
+        Vector3f dn = Cross(Vector3f(n2 - n0), Vector3f(n1 - n0));
+        if (LengthSquared(dn) == 0)
+            return;
+        Vector3f dnu, dnv;
+        CoordinateSystem(dn, &dnu, &dnv);
+        si->shading.dndu = Normal3f(dnu);
+        si->shading.dndv = Normal3f(dnv);
+        return;
+    }
+    Vector3f dn1(n0 - n2), dn2(n1 - n2);
+    Float invDet = 1 / DifferenceOfProducts(duv02[0], duv12[1], duv02[1], duv12[0]);
+    si->shading.dndu = Normal3f((dn1 * duv12[1] - dn2 * duv02[1]) * invDet);
+    si->shading.dndv = Normal3f((dn2 * duv02[0] - dn1 * duv12[0]) * invDet);
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------
@@ -158,6 +180,7 @@ SurfaceInteraction Triangle::InteractionFromIntersection(const TriangleMesh *mes
         else
             CoordinateSystem(ns, &ss, &ts);
         SetShadingGeometry(&si, ns, ss, ts);
+        NormalDerivatives(mesh, v, duv02, duv12, degenerateUV, &si);
     }
     return si;
 }

@@ -93,3 +93,26 @@ TEST(MixMaterial, ChoiceIsDeterministicPerHitAndFollowsAmount) {
     EXPECT_EQ((MixMaterial{{3, 7}, FloatTexture(0.f)}.Choose(si)), 3);
     EXPECT_EQ((MixMaterial{{3, 7}, FloatTexture(1.f)}.Choose(si)), 7);
 }
+
+TEST(BumpMapping, TheNormalsTurningScalesTheDisplacedTangent) {
+    // pbrt-v4's dp/du gains d * dn/du. On a cylinder of radius r around y (dn/du = dp/du / r),
+    // the ramp of RampDisplacementTiltsTheNormalByItsSlope, d = k/2 at its middle, makes dp/du
+    // (1 + d/r, 0, 2k): the normal tilts less than on the plane.
+    constexpr Float k = 0.25f, r = 0.5f;
+    auto image = std::make_shared<Image>(Point2i(2, 1));
+    for (int c = 0; c < 3; ++c) {
+        image->SetChannel(Point2i(0, 0), c, 0);
+        image->SetChannel(Point2i(1, 0), c, k);
+    }
+    FloatImageTexture ramp;
+    ramp.image = image;
+    ramp.wrapMode = WrapMode::Clamp;
+    Material m = DiffuseMaterial{};
+    m.SetDisplacement(ramp);
+    SurfaceInteraction si = PlaneHit(Point2f(0.5f, 0.5f));
+    si.shading.dndu = Normal3f(1 / r, 0, 0);
+    Vector3f n = ShadingNormal(GetBSDF(m, si));
+    Vector3f expected = Normalize(Vector3f(-2 * k, 0, 1 + k / 2 / r));
+    EXPECT_NEAR(n.x, expected.x, 1e-3f);
+    EXPECT_NEAR(n.z, expected.z, 1e-3f);
+}

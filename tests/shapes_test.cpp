@@ -65,6 +65,20 @@ TEST(Sphere, EquatorParameterization) {
     ExpectNear(si->intr.n, Normal3f(1, 0, 0));
 }
 
+TEST(Sphere, NormalTurnsAsThePoint) {
+    // n = (p - c) / r, so dn/du = dp/du / r (pbrt-v4's Weingarten equations for a sphere), and
+    // the other way round for a sphere whose normal points inward.
+    for (bool reverse : {false, true}) {
+        Sphere s(Translate(Vector3f(1, 2, 3)), reverse, 2, -2, 2, 360);
+        pstd::optional<ShapeIntersection> si =
+            s.Intersect(Ray(Point3f(8, 2.5f, 3.7f), Vector3f(-1, 0, 0)));
+        ASSERT_TRUE(si);
+        Float sign = reverse ? -1 : 1;
+        ExpectNear(si->intr.shading.dndu, Normal3f(sign * si->intr.shading.dpdu / 2), 1e-4f);
+        ExpectNear(si->intr.shading.dndv, Normal3f(sign * si->intr.shading.dpdv / 2), 1e-4f);
+    }
+}
+
 TEST(Sphere, ReverseOrientationPointsInward) {
     Sphere s(Transform(), true, 1, -1, 1, 360);
     pstd::optional<ShapeIntersection> si = s.Intersect(Ray(Point3f(5, 0, 0), Vector3f(-1, 0, 0)));
@@ -226,6 +240,20 @@ TEST(Triangle, ShadingNormalsAreAuthoritative) {
         Triangle(mesh.get(), 0).Intersect(Ray(Point3f(0, 0, 1), Vector3f(0, 0, -1)));
     ASSERT_TRUE(si);
     ExpectNear(si->intr.shading.n, tilted, 1e-3f);
+}
+
+// With uv (0,0), (1,0), (0,1) the interpolated normal is n0 + u (n1 - n0) + v (n2 - n0): its
+// derivatives are the normals' differences (pbrt-v4's dndu, dndv, unnormalized as there).
+TEST(Triangle, NormalDerivativesFollowTheVertexNormals) {
+    Normal3f n0(0, 0, 1), n1(0.3f, 0, 1), n2(0, -0.2f, 1);
+    auto mesh = std::make_shared<TriangleMesh>(MakeTriangleMesh(
+        Transform(), false, {0, 1, 2}, {Point3f(0, 0, 0), Point3f(1, 0, 0), Point3f(0, 1, 0)},
+        {n0, n1, n2}, {Point2f(0, 0), Point2f(1, 0), Point2f(0, 1)}));
+    pstd::optional<ShapeIntersection> si =
+        Triangle(mesh.get(), 0).Intersect(Ray(Point3f(0.2f, 0.3f, 1), Vector3f(0, 0, -1)));
+    ASSERT_TRUE(si);
+    ExpectNear(si->intr.shading.dndu, Normal3f(Vector3f(n1 - n0)), 1e-4f);
+    ExpectNear(si->intr.shading.dndv, Normal3f(Vector3f(n2 - n0)), 1e-4f);
 }
 
 // Rays through the shared edge of two triangles hit at least one of them (no leaks).
