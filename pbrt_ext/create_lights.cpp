@@ -44,7 +44,7 @@ Transform RotationFromZ(Vector3f w) {
 
 Light CreateSpotLight(const TransformedSceneEntity &e, Spectrum I, Float scale) {
     const ParameterDictionary &p = e.parameters;
-    Float coneAngle = p.GetOneFloat("coneangle", 30), coneDelta = p.GetOneFloat("conedelta", 5);
+    Float coneAngle = p.GetOneFloat("coneangle", 30), coneDelta = p.GetOneFloat("conedeltaangle", 5);
     Point3f from = p.GetOnePoint3f("from", Point3f(0, 0, 0)),
             to = p.GetOnePoint3f("to", Point3f(0, 0, 1));
     Float power = p.GetOneFloat("power", -1);

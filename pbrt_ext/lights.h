@@ -77,7 +77,7 @@ class PointLight {
 
 // A point source shining down light-space +z: full intensity within falloffStart degrees of
 // the axis, zero beyond totalWidth, a smoothstep in cos theta between. pbrt-v4's parameters:
-// a scene's "coneangle" is totalWidth and "coneangle - conedelta" is falloffStart.
+// a scene's "coneangle" is totalWidth and "coneangle - conedeltaangle" is falloffStart.
 class SpotLight {
   public:
     SpotLight(const Transform &worldFromLight, Spectrum I, Float scale, Float totalWidth,

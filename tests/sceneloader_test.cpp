@@ -403,3 +403,17 @@ Shape "sphere" "float radius" 0.5
     EXPECT_EQ(hit->intr.mediumInterface, MediumInterface(3));
     EXPECT_TRUE(scene->media.empty());
 }
+
+TEST(SceneLoaderLights, SpotLightReadsPbrtV4sConeDeltaAngle) {
+    // pbrt-v4's SpotLight::Create reads "conedeltaangle"; "conedelta" is no parameter of it.
+    auto spot = [](const std::string &delta) {
+        return WriteScene("spot-" + delta + ".pbrt", std::string(kHeader) + R"(
+LightSource "spot" "point3 from" [0 0 5] "point3 to" [0 0 0] "float coneangle" 20 "float )" +
+                                                         delta + R"(" 4
+Shape "sphere"
+)");
+    };
+    EXPECT_NO_THROW(LoadScene(spot("conedeltaangle"), Quick()));
+    std::string error = LoadError(spot("conedelta"));
+    EXPECT_NE(error.find("unused parameter \"float conedelta\""), std::string::npos) << error;
+}
