@@ -81,9 +81,8 @@ FabricMaterial CreateFabricMaterial(const ParameterDictionary &parameters, Textu
 std::optional<Light> CreateLight(const TransformedSceneEntity &light, const std::string &folder);
 AreaLightDescription CreateAreaLight(const SceneEntity &areaLight, const std::string &folder);
 
-// Media (create_media.cpp): a MakeNamedMedium entity, placed by its CTM; std::nullopt (with a
-// warning) for the types this renderer lacks, which then act as vacuum.
-std::optional<Medium> CreateMedium(const TransformedSceneEntity &medium, const std::string &folder);
+// Media (create_media.cpp): a MakeNamedMedium entity, placed by its CTM.
+Medium CreateMedium(const TransformedSceneEntity &medium, const std::string &folder);
 
 // Shapes (create_shapes.cpp): adds the shape to the builder, or warns and skips types this
 // renderer lacks. The alpha parameter (a float or a float texture) comes through `textures`,

@@ -169,10 +169,10 @@ GridShape ReadGridShape(const ParameterDictionary &p, const FileLoc &loc) {
     GridShape g{p.GetOneInt("nx", 1), p.GetOneInt("ny", 1), p.GetOneInt("nz", 1),
                 Bounds3f(p.GetOnePoint3f("p0", Point3f(0, 0, 0)),
                          p.GetOnePoint3f("p1", Point3f(1, 1, 1)))};
-    for (const char *n : {"nx", "ny", "nz"})
-        if (p.GetOneInt(n, 1) < 1)
-            throw ParseError(LocOf(p, n, loc), std::string("grid medium \"") + n +
-                                                   "\" must be at least 1");
+    for (auto [name, n] : {std::pair{"nx", g.nx}, std::pair{"ny", g.ny}, std::pair{"nz", g.nz}})
+        if (n < 1)
+            throw ParseError(LocOf(p, name, loc), std::string("grid medium \"") + name +
+                                                      "\" must be at least 1");
     if (g.bounds.IsDegenerate() || g.bounds.Volume() <= 0)
         throw ParseError(LocOf(p, "p0", loc),
                          "grid medium bounds p0, p1 enclose no volume; expected p0 < p1");
@@ -289,24 +289,25 @@ NanoVDBMedium CreateNanoVDB(const ParameterDictionary &p, const Transform &rende
 
 }  // namespace
 
-std::optional<Medium> CreateMedium(const TransformedSceneEntity &e, const std::string &folder) {
+Medium CreateMedium(const TransformedSceneEntity &e, const std::string &folder) {
     const ParameterDictionary &p = e.parameters;
     std::string type = p.GetOneString("type", "");
-    std::optional<Medium> medium;
-    if (type == "homogeneous")
-        medium = CreateHomogeneous(p, e.loc, folder);
-    else if (type == "uniformgrid")
-        medium = CreateUniformGrid(p, e.worldFromObject, e.loc, folder);
-    else if (type == "rgbgrid")
-        medium = CreateRGBGrid(p, e.worldFromObject, e.loc);
-    else if (type == "cloud")
-        medium = CreateCloud(p, e.worldFromObject, e.loc, folder);
-    else if (type == "nanovdb")
-        medium = CreateNanoVDB(p, e.worldFromObject, e.loc, folder);
-    else
+    auto create = [&]() -> Medium {
+        if (type == "homogeneous")
+            return CreateHomogeneous(p, e.loc, folder);
+        if (type == "uniformgrid")
+            return CreateUniformGrid(p, e.worldFromObject, e.loc, folder);
+        if (type == "rgbgrid")
+            return CreateRGBGrid(p, e.worldFromObject, e.loc);
+        if (type == "cloud")
+            return CreateCloud(p, e.worldFromObject, e.loc, folder);
+        if (type == "nanovdb")
+            return CreateNanoVDB(p, e.worldFromObject, e.loc, folder);
         throw ParseError(LocOf(p, "type", e.loc),
                          "unknown medium type \"" + type +
                              "\"; expected homogeneous, uniformgrid, rgbgrid, cloud or nanovdb");
+    };
+    Medium medium = create();
     p.ReportUnused();
     return medium;
 }

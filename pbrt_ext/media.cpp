@@ -20,15 +20,14 @@ void FillMajorants(MajorantGrid &grid, F maxDensity) {
                 grid.Set(x, y, z, maxDensity(grid.VoxelBounds(x, y, z)));
 }
 
-// The ray in the medium's space and its overlap [*tMin, *tMax] with bounds; false if none.
+}  // namespace
+
 bool OverlapInMediumSpace(const Transform &renderFromMedium, const Bounds3f &bounds, Ray *ray,
                           Float rayTMax, Float *tMin, Float *tMax) {
     // The transformation is linear, so t means the same distance in both spaces.
     *ray = renderFromMedium.ApplyInverse(*ray);
     return bounds.IntersectP(ray->o, ray->d, rayTMax, tMin, tMax);
 }
-
-}  // namespace
 
 // ---- DDAMajorantIterator ------------------------------------------------------------------
 
@@ -107,20 +106,19 @@ MediumProperties GridMedium::SamplePoint(Point3f p, const SampledWavelengths &la
     Float d = density.Lookup(pGrid);
     SampledSpectrum sa = (sigmaScale * d) * sigma_a.Sample(lambda);
     SampledSpectrum ss = (sigmaScale * d) * sigma_s.Sample(lambda);
-    SampledSpectrum Le(0.f);
-    if (emissive) {
-        Float scale = emission.LeScale.Lookup(pGrid);
-        if (scale > 0 && emission.temperature) {
-            Float T = (emission.temperature->Lookup(pGrid) - emission.temperatureOffset) *
-                      emission.temperatureScale;
-            // pbrt-v4 emits nothing at or below 100 K.
-            if (T > 100)
-                Le = scale * BlackbodySpectrum(T).Sample(lambda);
-        } else if (scale > 0) {
-            Le = scale * emission.Le.Sample(lambda);
-        }
-    }
-    return MediumProperties{sa, ss, phase, Le};
+    return MediumProperties{sa, ss, phase, Emission(pGrid, lambda)};
+}
+
+SampledSpectrum GridMedium::Emission(Point3f pGrid, const SampledWavelengths &lambda) const {
+    Float scale = emissive ? emission.LeScale.Lookup(pGrid) : 0;
+    if (!(scale > 0))
+        return SampledSpectrum(0.f);
+    if (!emission.temperature)
+        return scale * emission.Le.Sample(lambda);
+    Float T = (emission.temperature->Lookup(pGrid) - emission.temperatureOffset) *
+              emission.temperatureScale;
+    // pbrt-v4 emits nothing at or below 100 K.
+    return T > 100 ? scale * BlackbodySpectrum(T).Sample(lambda) : SampledSpectrum(0.f);
 }
 
 DDAMajorantIterator GridMedium::SampleRay(Ray ray, Float rayTMax,

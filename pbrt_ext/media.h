@@ -106,6 +106,11 @@ struct MajorantGrid {
     Point3i res;
 };
 
+// The ray carried into the medium's space and its overlap [*tMin, *tMax] with the medium's
+// bounds (there) within [0, rayTMax]; false if it misses them.
+bool OverlapInMediumSpace(const Transform &renderFromMedium, const Bounds3f &bounds, Ray *ray,
+                          Float rayTMax, Float *tMin, Float *tMax);
+
 // Walks a ray through a MajorantGrid voxel by voxel (Amanatides and Woo's 3D DDA), giving one
 // segment per voxel with sigma_maj = sigma_t times the voxel's maximum density.
 class DDAMajorantIterator {
@@ -179,6 +184,9 @@ class GridMedium {
     const MajorantGrid &Majorants() const { return majorantGrid; }
 
   private:
+    // The emitted radiance at pGrid in the grid's [0, 1]^3 coordinates.
+    SampledSpectrum Emission(Point3f pGrid, const SampledWavelengths &lambda) const;
+
     Bounds3f bounds;
     Transform renderFromMedium;
     Spectrum sigma_a, sigma_s;

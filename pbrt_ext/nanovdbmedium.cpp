@@ -330,6 +330,7 @@ NanoVDBMedium::NanoVDBMedium(const std::string &filename, const std::string &den
     : renderFromMedium(renderFromMedium), sigma_a(TabulatedForLookup(sigma_a)),
       sigma_s(TabulatedForLookup(sigma_s)), sigmaScale(sigmaScale), phase(g), LeScale(LeScale),
       temperatureOffset(temperatureOffset), temperatureScale(temperatureScale) {
+    CheckFileLayout(filename);  // before NanoVDB's reader sees the file
     auto loaded = std::make_shared<Grids>();
     TreeLayout densityLayout, temperatureLayout;
     loaded->density = ReadGrid(filename, densityName, densityName, true, &loaded->densityHandle,
@@ -371,9 +372,8 @@ MediumProperties NanoVDBMedium::SamplePoint(Point3f p, const SampledWavelengths 
 
 DDAMajorantIterator NanoVDBMedium::SampleRay(Ray ray, Float rayTMax,
                                              const SampledWavelengths &lambda) const {
-    ray = renderFromMedium.ApplyInverse(ray);
     Float tMin, tMax;
-    if (!bounds.IntersectP(ray.o, ray.d, rayTMax, &tMin, &tMax))
+    if (!OverlapInMediumSpace(renderFromMedium, bounds, &ray, rayTMax, &tMin, &tMax))
         return {};
     SampledSpectrum sigma_t = sigmaScale * (sigma_a.Sample(lambda) + sigma_s.Sample(lambda));
     return DDAMajorantIterator(ray, tMin, tMax, majorantGrid.get(), sigma_t);

@@ -73,8 +73,7 @@ class MaterialResolver {
 };
 
 // Media are created when the camera or a shape first names them: an unused MakeNamedMedium
-// (and the grid or file it holds) is never loaded. -1 is vacuum, as is a medium type this
-// renderer lacks (CreateMedium warns).
+// (and the grid or file it holds) is never loaded. The empty name is vacuum, -1.
 class MediumResolver {
   public:
     MediumResolver(const SceneDescription &scene, SceneBuilder &builder, std::string folder)
@@ -83,12 +82,10 @@ class MediumResolver {
     int For(const std::string &name) {
         if (name.empty())
             return -1;
-        auto [it, inserted] = indices.try_emplace(name, -1);
-        if (inserted) {
-            std::optional<Medium> medium = CreateMedium(scene.media.at(name), folder);
-            if (medium)
-                it->second = builder.AddMedium(std::move(*medium));
-        }
+        auto it = indices.find(name);
+        if (it == indices.end())
+            it = indices.emplace(name, builder.AddMedium(CreateMedium(scene.media.at(name), folder)))
+                     .first;
         return it->second;
     }
     MediumInterface For(const ShapeSceneEntity &shape) {

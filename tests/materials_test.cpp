@@ -32,12 +32,9 @@ BSDF GetBSDF(const Material &m, const SurfaceInteraction &si) {
     return m.GetBSDF(si, lambda);
 }
 
-}  // namespace
-
-TEST(BumpMapping, RampDisplacementTiltsTheNormalByItsSlope) {
-    // d(u) from a 2-texel image [0, k] with bilinear filtering and clamp: slope 2k in the middle.
-    // dp/du becomes (1, 0, 2k), so the normal is normalize(-2k, 0, 1).
-    constexpr Float k = 0.25f;
+// A diffuse material bumped by d(u) from a 2-texel image [0, k] with bilinear filtering and
+// clamp: slope 2k in the middle, d = k/2 there.
+Material RampBumpedMaterial(Float k) {
     auto image = std::make_shared<Image>(Point2i(2, 1));
     for (int c = 0; c < 3; ++c) {
         image->SetChannel(Point2i(0, 0), c, 0);
@@ -48,6 +45,15 @@ TEST(BumpMapping, RampDisplacementTiltsTheNormalByItsSlope) {
     ramp.wrapMode = WrapMode::Clamp;
     Material m = DiffuseMaterial{};
     m.SetDisplacement(ramp);
+    return m;
+}
+
+}  // namespace
+
+TEST(BumpMapping, RampDisplacementTiltsTheNormalByItsSlope) {
+    // dp/du becomes (1, 0, 2k), so the normal is normalize(-2k, 0, 1).
+    constexpr Float k = 0.25f;
+    Material m = RampBumpedMaterial(k);
     Vector3f n = ShadingNormal(GetBSDF(m, PlaneHit(Point2f(0.5f, 0.5f))));
     Vector3f expected = Normalize(Vector3f(-2 * k, 0, 1));
     EXPECT_NEAR(n.x, expected.x, 1e-3f);
@@ -96,19 +102,10 @@ TEST(MixMaterial, ChoiceIsDeterministicPerHitAndFollowsAmount) {
 
 TEST(BumpMapping, TheNormalsTurningScalesTheDisplacedTangent) {
     // pbrt-v4's dp/du gains d * dn/du. On a cylinder of radius r around y (dn/du = dp/du / r),
-    // the ramp of RampDisplacementTiltsTheNormalByItsSlope, d = k/2 at its middle, makes dp/du
+    // RampBumpedMaterial's ramp, d = k/2 at its middle, makes dp/du
     // (1 + d/r, 0, 2k): the normal tilts less than on the plane.
     constexpr Float k = 0.25f, r = 0.5f;
-    auto image = std::make_shared<Image>(Point2i(2, 1));
-    for (int c = 0; c < 3; ++c) {
-        image->SetChannel(Point2i(0, 0), c, 0);
-        image->SetChannel(Point2i(1, 0), c, k);
-    }
-    FloatImageTexture ramp;
-    ramp.image = image;
-    ramp.wrapMode = WrapMode::Clamp;
-    Material m = DiffuseMaterial{};
-    m.SetDisplacement(ramp);
+    Material m = RampBumpedMaterial(k);
     SurfaceInteraction si = PlaneHit(Point2f(0.5f, 0.5f));
     si.shading.dndu = Normal3f(1 / r, 0, 0);
     Vector3f n = ShadingNormal(GetBSDF(m, si));
