@@ -3,11 +3,13 @@
 #include "pbrt_ext/create.h"
 
 #include "pbrt_ext/util/error.h"
+#include "pbrt_ext/util/loopsubdiv.h"
 #include "pbrt_ext/util/ply.h"
 #include "pbrt_ext/util/resourcelimits.h"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <limits>
 
@@ -149,6 +151,39 @@ void AddBilinearMesh(SceneBuilder &builder, const ShapeSceneEntity &e,
     builder.AddBilinearPatchMesh(std::move(mesh), a.material, a.emission, a.alpha);
 }
 
+// pbrt-v4's loopsubdiv: the control mesh refined `levels` times, as a triangle mesh with the
+// limit surface's normals. Each level has four times the triangles of the last (and about 52
+// bytes each while it is refined), so the size is checked before the first level.
+void AddLoopSubdiv(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearance &a) {
+    const ParameterDictionary &p = e.parameters;
+    int levels = p.GetOneInt("levels", 3);
+    std::vector<int> indices = p.GetIntArray("indices");
+    std::vector<Point3f> P = p.GetPoint3fArray("P");
+    std::string scheme = p.GetOneString("scheme", "loop");
+    p.ReportUnused();
+    if (indices.empty() || P.empty())
+        throw ParseError(e.loc, "loopsubdiv needs \"point3 P\" and \"integer indices\"");
+    if (levels < 0)
+        throw ParseError(*p.Loc("levels"),
+                         fmt::format("loopsubdiv \"levels\" is {}; expected 0 or more", levels));
+    if (scheme != "loop")
+        throw ParseError(*p.Loc("scheme"), "loopsubdiv \"scheme\" \"" + scheme +
+                                               "\" is unknown; expected \"loop\"");
+    uint64_t triangles = indices.size() / 3;
+    for (int level = 0; level < std::min(levels, 64); ++level)  // saturated by then
+        triangles = SaturatingProduct({triangles, 4});
+    CheckMemory(e.loc, fmt::format("loopsubdiv to level {}", levels),
+                SaturatingProduct({triangles, 52}));
+    CheckPrimitives(e, a, triangles);
+    auto mesh = AtShape(e, [&] {
+        SubdividedMesh limit = LoopSubdivide(levels, indices, P);
+        return std::make_shared<TriangleMesh>(MakeTriangleMesh(
+            e.worldFromObject, e.reverseOrientation, std::move(limit.indices),
+            std::move(limit.p), std::move(limit.n)));
+    });
+    builder.AddTriangleMesh(std::move(mesh), a.material, a.emission, a.alpha);
+}
+
 // pbrt-v4's cylinder (radius, zmin, zmax, phimax) as a fine triangle mesh with the cylinder's
 // exact normals and (u, v) = (φ/φmax, (z - zmin)/(zmax - zmin)).
 void AddCylinder(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearance &a) {
@@ -209,12 +244,14 @@ void AddShape(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
         p.ReportUnused();
         return builder.AddDisk(disk, a.material, a.emission, a.alpha);
     }
-    if (e.name == "curve" || e.name == "loopsubdiv") {
+    if (e.name == "loopsubdiv")
+        return AddLoopSubdiv(builder, e, a);
+    if (e.name == "curve") {
         WarningAt(e.loc, "Shape \"%s\" is not supported: skipped", e.name.c_str());
         return;
     }
     throw ParseError(e.loc, "unknown Shape \"" + e.name + "\": expected trianglemesh, plymesh, "
-                                "bilinearmesh, sphere, disk or cylinder");
+                                "bilinearmesh, loopsubdiv, sphere, disk or cylinder");
 }
 
 }  // namespace pbrt

@@ -211,6 +211,19 @@ TEST_F(ResourceLimits, ZSobolAtTheBitLimitStillSamples) {
 
 // ---- Meshes -------------------------------------------------------------------------------------
 
+TEST_F(ResourceLimits, LoopSubdivisionLevelsAreBoundedBeforeRefining) {
+    // Each level quadruples the triangles: 4^40 of them overflow any count.
+    std::string file = kBad + "limit_loopsubdiv_levels.pbrt";
+    EXPECT_EQ(LoadError(file), file + ":3:1: error: loopsubdiv to level 40 would take more than "
+                                      "2^64 bytes of memory; " + kOverBudget);
+    std::string thirteen = WriteFile(
+        "levels13.pbrt", "WorldBegin\nShape \"loopsubdiv\" \"integer levels\" 13 "
+                         "\"integer indices\" [0 1 2] \"point3 P\" [0 0 0 1 0 0 0 1 0]\n");
+    EXPECT_EQ(LoadError(thirteen), thirteen + ":2:1: error: loopsubdiv to level 13 would take "
+                                              "3489660928 bytes (3.2 GiB) of memory; " +
+                                              kOverBudget);
+}
+
 TEST_F(ResourceLimits, PlyFaceCountIsBoundedByTheFile) {
     // The header declares 2^31 faces; the 13 bytes after the vertices hold one.
     std::string file = kBad + "limit_ply_faces.pbrt";

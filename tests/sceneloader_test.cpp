@@ -238,7 +238,7 @@ Shape "sphere"
 Shape "teapot"
 )");
     EXPECT_EQ(LoadError(file2), file2 + ":8:1: error: unknown Shape \"teapot\": expected "
-                                        "trianglemesh, plymesh, bilinearmesh, sphere, disk or "
+                                        "trianglemesh, plymesh, bilinearmesh, loopsubdiv, sphere, disk or "
                                         "cylinder");
 }
 
@@ -299,6 +299,22 @@ TEST(SceneLoader, PlyQuadsBecomePatchesCoveringTheirSquare) {
         EXPECT_FALSE(hits(x, y)) << x << ", " << y;
 }
 
+TEST(SceneLoader, LoopSubdivBecomesItsLimitSurfaceInWorldSpace) {
+    // The tetrahedron at alternate corners of [-1, 1]^3: a corner's limit point is a/5 at every
+    // level (tests/loopsubdiv_test.cpp), here scaled by 2. Its normal is along the corner's axis.
+    std::string file = WriteScene("loop.pbrt", std::string(kHeader) + R"(
+Scale 2 2 2
+Shape "loopsubdiv" "integer levels" 2 "integer indices" [0 1 2 0 3 1 0 2 3 1 3 2]
+    "point3 P" [1 1 1  1 -1 -1  -1 1 -1  -1 -1 1]
+)");
+    std::unique_ptr<Scene> scene = LoadScene(file, Quick());
+    Vector3f axis = Normalize(Vector3f(1, 1, 1));
+    pstd::optional<ShapeIntersection> hit = scene->Intersect(Ray(Point3f(0, 0, 0), axis));
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->tHit, 2 * std::sqrt(3.f) / 5, 1e-5f);
+    EXPECT_NEAR(AbsDot(Vector3f(hit->intr.shading.n), axis), 1, 1e-5f);
+}
+
 TEST(SceneLoader, FabricDiffuseBaseAddsTheEnergyBoundedBaseLobe) {
     std::string file = WriteScene("fabricdiffuse.pbrt", std::string(kHeader) + R"(
 Material "fabric" "rgb reflectance" [0.5 0.5 0.5] "float roughness" 0.3 "rgb diffuse" [0.6 0.4 0.2]
@@ -339,6 +355,12 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
          ":4:5: error: grid medium has 5 \"density\" values; expected nx*ny*nz = 8"},
         // The NanoVDB reader's own message follows the resolved file name.
         {"load_missing_nvdb.pbrt", ":3:49: error: "},
+        // Subdivision surfaces: the control mesh's faults, at the shape.
+        {"load_loopsubdiv_nonmanifold.pbrt",
+         ":3:1: error: loopsubdiv: edge 0-1 is used twice in the same direction (triangles 0 "
+         "and 1): the mesh must be a consistently oriented manifold"},
+        {"load_loopsubdiv_levels.pbrt",
+         ":3:20: error: loopsubdiv \"levels\" is -1; expected 0 or more"},
         {"load_corrupt_nvdb.pbrt", ":3:49: error: "}};
     for (auto [name, expected] : cases) {
         std::string file = std::string(PBRT_EXT_TEST_DATA_DIR) + "/bad/" + name;
