@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <deque>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 
 namespace pbrt {
@@ -101,7 +102,7 @@ bool AlphaKeeps(const FloatTexture &alpha, const SurfaceInteraction &si, const R
 
 // What Embree's callbacks for one geometry read through its user pointer.
 struct CallbackData {
-    const void *shape;          // TriangleMesh, BilinearPatchMesh, Sphere or Disk
+    const void *shape;          // TriangleMesh, BilinearPatchMesh or a quadric
     const FloatTexture *alpha;  // null: opaque
 };
 
@@ -136,6 +137,8 @@ template <typename Quadric>
 constexpr int kMaxQuadricHits = 1;
 template <>
 constexpr int kMaxQuadricHits<Sphere> = 2;
+template <>
+constexpr int kMaxQuadricHits<Cylinder> = 2;
 
 // The first hit from `hit` on that the alpha test keeps. Past a rejected hit the search goes on
 // with a ray from just beyond it, as pbrt-v4's continuation ray does. The step (1e-5 of the
@@ -161,7 +164,7 @@ pstd::optional<QuadricIntersection> FirstKept(const Quadric &shape, const FloatT
     return {};
 }
 
-// Spheres and disks: one primitive per geometry.
+// Spheres, cylinders and disks: one primitive per geometry.
 template <typename Quadric>
 struct QuadricCallbacks {
     static const Quadric &ShapeOf(const void *userPtr) {
@@ -248,12 +251,19 @@ struct PatchCallbacks {
     }
 };
 
-enum class GeometryKind : uint8_t { Triangles, BilinearPatches, Sphere, Disk, Instance };
+enum class GeometryKind : uint8_t { Triangles, BilinearPatches, Sphere, Cylinder, Disk, Instance };
+
+template <typename Quadric>
+constexpr GeometryKind kQuadricKind = GeometryKind::Sphere;
+template <>
+constexpr GeometryKind kQuadricKind<Cylinder> = GeometryKind::Cylinder;
+template <>
+constexpr GeometryKind kQuadricKind<Disk> = GeometryKind::Disk;
 
 // What a hit on geometry geomID of a scene needs, indexed by geomID.
 struct GeometryRecord {
     GeometryKind kind;
-    const void *shape;  // TriangleMesh, BilinearPatchMesh, Sphere or Disk; unused for instances
+    const void *shape;  // TriangleMesh, BilinearPatchMesh or a quadric; unused for instances
     PrimitiveAttributes attrs;
     int instanceIndex = -1;  // Instance: into Impl::instances
 };
@@ -279,8 +289,7 @@ struct EmbreeAggregate::Impl {
     int openObject = -1;
     bool committed = false;
     // Stable addresses for Embree's user pointers.
-    std::deque<Sphere> spheres;
-    std::deque<Disk> disks;
+    std::tuple<std::deque<Sphere>, std::deque<Cylinder>, std::deque<Disk>> quadrics;
     std::vector<std::shared_ptr<const TriangleMesh>> triangleMeshes;
     std::vector<std::shared_ptr<const BilinearPatchMesh>> patchMeshes;
     std::deque<CallbackData> callbackData;
@@ -346,11 +355,27 @@ struct EmbreeAggregate::Impl {
         return Attach(geom, {kind, shape, attrs});
     }
 
+    template <typename Quadric>
+    int AddQuadric(const Quadric &shape, PrimitiveAttributes attrs) {
+        auto &copies = std::get<std::deque<Quadric>>(quadrics);
+        copies.push_back(shape);
+        return AddUserGeometry<QuadricCallbacks<Quadric>>(kQuadricKind<Quadric>, &copies.back(),
+                                                          1, attrs);
+    }
+
     void Check(const char *what) const {
         RTCError code = rtcGetDeviceError(device);
         if (code != RTC_ERROR_NONE)
             throw std::runtime_error(std::string("Embree: ") + what + " failed (" +
                                      ErrorName(code) + ")");
+    }
+
+    // A quadric's hit record holds its object-space point where the normal would be.
+    template <typename Quadric>
+    static SurfaceInteraction QuadricInteraction(const GeometryRecord &g, const RTCRayHit &rh,
+                                                 Vector3f wo) {
+        return static_cast<const Quadric *>(g.shape)->InteractionFromIntersection(
+            {rh.ray.tfar, Point3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z)}, wo);
     }
 
     SurfaceInteraction Interaction(const GeometryRecord &g, const RTCRayHit &rh,
@@ -366,11 +391,11 @@ struct EmbreeAggregate::Impl {
                 static_cast<const BilinearPatchMesh *>(g.shape), int(hit.primID),
                 Point2f(hit.u, hit.v), wo);
         case GeometryKind::Sphere:
-            return static_cast<const Sphere *>(g.shape)->InteractionFromIntersection(
-                {rh.ray.tfar, Point3f(hit.Ng_x, hit.Ng_y, hit.Ng_z)}, wo);
+            return QuadricInteraction<Sphere>(g, rh, wo);
+        case GeometryKind::Cylinder:
+            return QuadricInteraction<Cylinder>(g, rh, wo);
         case GeometryKind::Disk:
-            return static_cast<const Disk *>(g.shape)->InteractionFromIntersection(
-                {rh.ray.tfar, Point3f(hit.Ng_x, hit.Ng_y, hit.Ng_z)}, wo);
+            return QuadricInteraction<Disk>(g, rh, wo);
         case GeometryKind::Instance:
             break;
         }
@@ -419,15 +444,15 @@ int EmbreeAggregate::AddBilinearPatchMesh(std::shared_ptr<const BilinearPatchMes
 }
 
 int EmbreeAggregate::AddSphere(const Sphere &sphere, PrimitiveAttributes attrs) {
-    impl->spheres.push_back(sphere);
-    return impl->AddUserGeometry<QuadricCallbacks<Sphere>>(GeometryKind::Sphere,
-                                                           &impl->spheres.back(), 1, attrs);
+    return impl->AddQuadric(sphere, std::move(attrs));
+}
+
+int EmbreeAggregate::AddCylinder(const Cylinder &cylinder, PrimitiveAttributes attrs) {
+    return impl->AddQuadric(cylinder, std::move(attrs));
 }
 
 int EmbreeAggregate::AddDisk(const Disk &disk, PrimitiveAttributes attrs) {
-    impl->disks.push_back(disk);
-    return impl->AddUserGeometry<QuadricCallbacks<Disk>>(GeometryKind::Disk,
-                                                         &impl->disks.back(), 1, attrs);
+    return impl->AddQuadric(disk, std::move(attrs));
 }
 
 int EmbreeAggregate::BeginObject(const std::string &name) {

@@ -1,7 +1,7 @@
 // The scene's ray-intersection acceleration structure, on Embree 3 (in the place of pbrt-v4's
 // BVHAggregate and its primitives: GeometricPrimitive, TransformedPrimitive).
 //
-// Triangle meshes are Embree's native triangles; spheres, disks and bilinear patches are Embree
+// Triangle meshes are Embree's native triangles; spheres, cylinders, disks and bilinear patches are Embree
 // user geometry that calls the shapes' own intersection routines; object instances are Embree
 // instances of a shared sub-scene. Every geometry carries PrimitiveAttributes, which Intersect
 // copies into the SurfaceInteraction, and may carry an alpha texture that cuts the surface out
@@ -57,12 +57,13 @@ class EmbreeAggregate {
     EmbreeAggregate &operator=(EmbreeAggregate &&) noexcept;
 
     // Geometry goes into the world, or into the object opened by BeginObject. The aggregate
-    // shares ownership of meshes and copies spheres and disks. Each returns the geometry's id
+    // shares ownership of meshes and copies quadrics. Each returns the geometry's id
     // within its scene (the world or the object).
     int AddTriangleMesh(std::shared_ptr<const TriangleMesh> mesh, PrimitiveAttributes attrs);
     int AddBilinearPatchMesh(std::shared_ptr<const BilinearPatchMesh> mesh,
                              PrimitiveAttributes attrs);
     int AddSphere(const Sphere &sphere, PrimitiveAttributes attrs);
+    int AddCylinder(const Cylinder &cylinder, PrimitiveAttributes attrs);
     int AddDisk(const Disk &disk, PrimitiveAttributes attrs);
 
     // Object instancing (pbrt-v4's ObjectBegin/ObjectEnd/ObjectInstance): geometry added between

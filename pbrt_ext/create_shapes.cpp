@@ -184,35 +184,26 @@ void AddLoopSubdiv(SceneBuilder &builder, const ShapeSceneEntity &e, const Appea
     builder.AddTriangleMesh(std::move(mesh), a.material, a.emission, a.alpha);
 }
 
-// pbrt-v4's cylinder (radius, zmin, zmax, phimax) as a fine triangle mesh with the cylinder's
-// exact normals and (u, v) = (φ/φmax, (z - zmin)/(zmax - zmin)).
+// pbrt-v4's cylinder: the analytic quadric. A cylinder without area is an error, since an
+// emitting one would have no density to sample it by.
 void AddCylinder(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearance &a) {
-    constexpr int kSegments = 256;
     const ParameterDictionary &p = e.parameters;
     Float radius = p.GetOneFloat("radius", 1), zMin = p.GetOneFloat("zmin", -1),
-          zMax = p.GetOneFloat("zmax", 1), phiMax = Radians(Clamp(p.GetOneFloat("phimax", 360), 0, 360));
+          zMax = p.GetOneFloat("zmax", 1), phiMax = p.GetOneFloat("phimax", 360);
     p.ReportUnused();
-    WarningAt(e.loc, "cylinder is rendered as a %d-segment triangle mesh with exact normals",
-              kSegments);
-    std::vector<Point3f> P;
-    std::vector<Normal3f> N;
-    std::vector<Point2f> uv;
-    std::vector<int> indices;
-    for (int i = 0; i <= kSegments; ++i) {
-        Float u = Float(i) / kSegments, phi = u * phiMax;
-        for (Float z : {zMin, zMax}) {
-            P.push_back(Point3f(radius * std::cos(phi), radius * std::sin(phi), z));
-            N.push_back(Normal3f(std::cos(phi), std::sin(phi), 0));
-            uv.push_back(Point2f(u, z == zMin ? 0 : 1));
-        }
-        if (i > 0)
-            for (int k : {0, 2, 1, 1, 2, 3})
-                indices.push_back(2 * (i - 1) + k);
-    }
-    auto mesh = std::make_shared<TriangleMesh>(MakeTriangleMesh(
-        e.worldFromObject, e.reverseOrientation, std::move(indices), std::move(P), std::move(N),
-        std::move(uv)));
-    builder.AddTriangleMesh(std::move(mesh), a.material, a.emission, a.alpha);
+    if (!(radius > 0) || !IsFinite(radius))
+        throw ParseError(p.Loc("radius") ? *p.Loc("radius") : e.loc,
+                         fmt::format("cylinder \"radius\" is {}; expected a finite value > 0",
+                                     radius));
+    if (!(zMin != zMax) || !IsFinite(zMin) || !IsFinite(zMax))
+        throw ParseError(e.loc, fmt::format("cylinder \"zmin\" {} and \"zmax\" {}: expected "
+                                            "two different finite heights", zMin, zMax));
+    if (!(phiMax > 0))
+        throw ParseError(*p.Loc("phimax"),
+                         fmt::format("cylinder \"phimax\" is {}; expected a value > 0", phiMax));
+    builder.AddCylinder(Cylinder(e.worldFromObject, e.reverseOrientation, radius, zMin, zMax,
+                                 phiMax),
+                        a.material, a.emission, a.alpha);
 }
 
 }  // namespace

@@ -193,9 +193,10 @@ namespace {
 // The directions the shape's emitting normals take, read from the shape's own samples so that
 // they are oriented exactly as its intersections are (the side L() emits toward). Triangles and
 // disks are flat, a bilinear patch's normal stays within the cone of its corner normals (the
-// cross product of its tangents is bilinear in u and v), and a sphere faces every way.
+// cross product of its tangents is bilinear in u and v), and spheres and cylinders face every
+// way (a partial cylinder's cone is left whole, as pbrt-v4 leaves it).
 DirectionCone NormalBounds(const Shape &shape) {
-    if (shape.CastOrNullptr<Sphere>())
+    if (shape.CastOrNullptr<Sphere>() || shape.CastOrNullptr<Cylinder>())
         return DirectionCone::EntireSphere();
     static constexpr Point2f center[] = {Point2f(0.5f, 0.5f)};
     static constexpr Point2f corners[] = {Point2f(0, 0), Point2f(OneMinusEpsilon, 0),

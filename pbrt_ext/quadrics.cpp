@@ -1,8 +1,9 @@
-// Quadrics (pbrt-v4's Sphere and Disk). Where this differs from pbrt-v4, and why:
+// Quadrics (pbrt-v4's Sphere, Cylinder and Disk). Where this differs from pbrt-v4, and why:
 //   - Partial spheres and disks (zMin/zMax/phiMax, innerRadius) are sampled over the part that
 //     exists, and area densities account for a scaling transform (Nanson's formula), so that
-//     Sample and PDF agree with Intersect; pbrt-v4 samples the whole shape in object units.
-//   - Sphere and disk samples orient n exactly as their intersections do (reverseOrientation ^
+//     Sample and PDF agree with Intersect; pbrt-v4 samples the whole shape in object units
+//     (its cylinder too, whose pdf is 1/Area in object units even under a scaling transform).
+//   - Samples orient n exactly as their intersections do (reverseOrientation ^
 //     transformSwapsHandedness); pbrt-v4's samples use reverseOrientation alone, which disagrees
 //     with its own intersections under a mirroring transform.
 #include "pbrt_ext/shapes.h"
@@ -31,9 +32,7 @@ Sphere::Sphere(const Transform &worldFromObject, bool reverseOrientation, Float 
       thetaZMin(std::acos(Clamp(std::min(z0, z1) / radius, -1, 1))),
       thetaZMax(std::acos(Clamp(std::max(z0, z1) / radius, -1, 1))),
       phiMax(Radians(Clamp(phiMaxDegrees, 0, 360))) {
-    Vector3f ax = worldFromObject(Vector3f(1, 0, 0)), ay = worldFromObject(Vector3f(0, 1, 0)),
-             az = worldFromObject(Vector3f(0, 0, 1));
-    absDet = std::abs(Dot(ax, Cross(ay, az)));
+    absDet = AbsDeterminant(worldFromObject);
     objectArea = phiMax * radius * (zMax - zMin);
     // The object-space area element is radius dz dphi; the transform scales it pointwise.
     worldArea = objectArea * Float(IntegrateUnitSquare([&](Float s, Float t) {
@@ -42,6 +41,8 @@ Sphere::Sphere(const Transform &worldFromObject, bool reverseOrientation, Float 
                     return AreaScale(Point3f(r * std::cos(phi), r * std::sin(phi), z));
                 }));
 
+    Vector3f ax = worldFromObject(Vector3f(1, 0, 0)), ay = worldFromObject(Vector3f(0, 1, 0)),
+             az = worldFromObject(Vector3f(0, 0, 1));
     Float l = Length(ax), tol = 1e-4f * Sqr(l);
     bool similarity = std::abs(LengthSquared(ay) - Sqr(l)) <= tol &&
                       std::abs(LengthSquared(az) - Sqr(l)) <= tol &&
@@ -61,9 +62,8 @@ Float Sphere::Area() const {
 }
 
 Float Sphere::AreaScale(Point3f pObj) const {
-    // Nanson's formula: a linear map M scales area at unit normal n by |det M| |M^-T n|.
-    Normal3f nObj(pObj.x / radius, pObj.y / radius, pObj.z / radius);
-    return absDet * Length(worldFromObject(nObj));
+    return shapedetail::AreaScale(worldFromObject, absDet,
+                                  Normal3f(pObj.x / radius, pObj.y / radius, pObj.z / radius));
 }
 
 Float Sphere::AreaPDF(Point3f pObj) const {
@@ -225,6 +225,144 @@ std::string Sphere::ToString() const {
     char buf[256];
     std::snprintf(buf, sizeof(buf),
                   "[ Sphere radius: %g zMin: %g zMax: %g phiMax: %g reverseOrientation: %s "
+                  "transformSwapsHandedness: %s ]",
+                  radius, zMin, zMax, Degrees(phiMax), reverseOrientation ? "true" : "false",
+                  transformSwapsHandedness ? "true" : "false");
+    return buf;
+}
+
+// ---------------------------------------------------------------------------------------
+// Cylinder
+
+Cylinder::Cylinder(const Transform &worldFromObject, bool reverseOrientation, Float radius,
+                   Float z0, Float z1, Float phiMaxDegrees)
+    : worldFromObject(worldFromObject),
+      objectFromWorld(Inverse(worldFromObject)),
+      reverseOrientation(reverseOrientation),
+      transformSwapsHandedness(worldFromObject.SwapsHandedness()),
+      radius(radius),
+      zMin(std::min(z0, z1)),
+      zMax(std::max(z0, z1)),
+      phiMax(Radians(Clamp(phiMaxDegrees, 0, 360))) {
+    absDet = AbsDeterminant(worldFromObject);
+    objectArea = (zMax - zMin) * radius * phiMax;
+    // The object-space normal (cos phi, sin phi, 0) does not depend on z: a 1D integral over
+    // phi, whose rule needs more nodes than the sphere's product rule has for an elliptic
+    // cross-section to come out within 1e-6.
+    static const std::vector<std::pair<double, double>> rule = GaussLegendre(64);
+    double mean = 0;
+    for (auto [x, w] : rule) {
+        Float phi = Float((x + 1) / 2) * phiMax;
+        mean += w / 2 * AreaScale(worldFromObject, absDet, Normal3f(std::cos(phi), std::sin(phi), 0));
+    }
+    worldArea = objectArea * Float(mean);
+}
+
+Bounds3f Cylinder::Bounds() const {
+    return worldFromObject(Bounds3f(Point3f(-radius, -radius, zMin), Point3f(radius, radius, zMax)));
+}
+
+Point2f Cylinder::UV(Point3f pObj) const {
+    return Point2f(Azimuth(pObj.x, pObj.y) / phiMax, (pObj.z - zMin) / (zMax - zMin));
+}
+
+Float Cylinder::AreaPDF(Point3f pObj) const {
+    Normal3f n(pObj.x / radius, pObj.y / radius, 0);
+    return 1 / (objectArea * AreaScale(worldFromObject, absDet, n));
+}
+
+pstd::optional<QuadricIntersection> Cylinder::BasicIntersect(const Ray &r, Float tMax) const {
+    Point3f oi = objectFromWorld(r.o);
+    Vector3f di = objectFromWorld(r.d);
+    // The sphere's robust quadratic in the xy plane (pbrt-v4 6.3.2): the discriminant as
+    // 4a (r + l)(r - l), l the distance from the axis to the ray's line, in double.
+    double ox = oi.x, oy = oi.y, dx = di.x, dy = di.y;
+    double a = dx * dx + dy * dy, b = 2 * (dx * ox + dy * oy);
+    double c = ox * ox + oy * oy - double(radius) * radius;
+    if (a == 0)
+        return {};  // parallel to the axis: along the surface or never on it
+    double f = b / (2 * a);
+    double vx = ox - f * dx, vy = oy - f * dy;
+    double len = std::sqrt(vx * vx + vy * vy);
+    double discrim = 4 * a * (radius + len) * (radius - len);
+    if (discrim < 0)
+        return {};
+    double rootDiscrim = std::sqrt(discrim);
+    double q = (b < 0) ? -0.5 * (b - rootDiscrim) : -0.5 * (b + rootDiscrim);
+    if (q == 0)
+        return {};
+    double t0 = q / a, t1 = c / q;
+    if (t0 > t1)
+        std::swap(t0, t1);
+    for (double t : {t0, t1}) {
+        if (t <= 0)
+            continue;
+        if (!(t < tMax))
+            return {};
+        Point3f pHit(Float(ox + t * dx), Float(oy + t * dy), Float(double(oi.z) + t * di.z));
+        Float hitRadius = std::sqrt(Sqr(pHit.x) + Sqr(pHit.y));
+        pHit.x *= radius / hitRadius;
+        pHit.y *= radius / hitRadius;
+        if (pHit.z >= zMin && pHit.z <= zMax && Azimuth(pHit.x, pHit.y) <= phiMax)
+            return QuadricIntersection{Float(t), pHit};
+    }
+    return {};
+}
+
+SurfaceInteraction Cylinder::InteractionFromIntersection(const QuadricIntersection &isect,
+                                                         Vector3f wo) const {
+    Point3f p = isect.pObj;
+    Vector3f dpdu(-phiMax * p.y, phiMax * p.x, 0), dpdv(0, 0, zMax - zMin);
+    SurfaceInteraction local = MakeInteraction(p, UV(p), Vector3f(), dpdu, dpdv, FlipNormal());
+    // The outward normal (x, y, 0) / r turns with u as p does and not at all with v (the
+    // Weingarten equations: dn/du = dp/du / r, dn/dv = 0).
+    Float sign = FlipNormal() ? -1 : 1;
+    local.shading.dndu = Normal3f(sign * dpdu / radius);
+    local.shading.dndv = Normal3f(0, 0, 0);
+    SurfaceInteraction si = TransformInteraction(worldFromObject, local);
+    si.wo = wo;
+    return si;
+}
+
+pstd::optional<ShapeIntersection> Cylinder::Intersect(const Ray &ray, Float tMax) const {
+    pstd::optional<QuadricIntersection> isect = BasicIntersect(ray, tMax);
+    if (!isect)
+        return {};
+    return ShapeIntersection{InteractionFromIntersection(*isect, -Normalize(ray.d)),
+                             isect->tHit};
+}
+
+bool Cylinder::IntersectP(const Ray &ray, Float tMax) const {
+    return BasicIntersect(ray, tMax).has_value();
+}
+
+pstd::optional<ShapeSample> Cylinder::Sample(Point2f u) const {
+    Float z = Lerp(u[0], zMin, zMax), phi = u[1] * phiMax;
+    Point3f pObj(radius * std::cos(phi), radius * std::sin(phi), z);
+    Normal3f n = Normalize(worldFromObject(Normal3f(pObj.x, pObj.y, 0)));
+    if (FlipNormal())
+        n = -n;
+    return MakeSample(worldFromObject(pObj), n, UV(pObj), AreaPDF(pObj));
+}
+
+pstd::optional<ShapeSample> Cylinder::Sample(const ShapeSampleContext &ctx, Point2f u) const {
+    return SampleBySolidAngle(*this, ctx, u);
+}
+
+Float Cylinder::PDF(const ShapeSampleContext &ctx, Vector3f wi) const {
+    Vector3f w = Normalize(wi);
+    pstd::optional<QuadricIntersection> isect = BasicIntersect(SpawnRay(ctx, w), Infinity);
+    if (!isect)
+        return 0;
+    Point3f pObj = isect->pObj;
+    Normal3f n = Normalize(worldFromObject(Normal3f(pObj.x, pObj.y, 0)));
+    return AreaToSolidAngle(AreaPDF(pObj), ctx.p, worldFromObject(pObj), n, w);
+}
+
+std::string Cylinder::ToString() const {
+    char buf[256];
+    std::snprintf(buf, sizeof(buf),
+                  "[ Cylinder radius: %g zMin: %g zMax: %g phiMax: %g reverseOrientation: %s "
                   "transformSwapsHandedness: %s ]",
                   radius, zMin, zMax, Degrees(phiMax), reverseOrientation ? "true" : "false",
                   transformSwapsHandedness ? "true" : "false");

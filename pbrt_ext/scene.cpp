@@ -63,24 +63,38 @@ void SceneBuilder::AddBilinearPatchMesh(std::shared_ptr<BilinearPatchMesh> mesh,
     scene->aggregate.AddBilinearPatchMesh(std::move(mesh), attributes);
 }
 
-void SceneBuilder::AddSphere(const Sphere &sphere, int material,
-                             std::optional<AreaLightDescription> emission,
-                             std::optional<FloatTexture> alpha) {
+template <typename Quadric, typename AddToAggregate>
+void SceneBuilder::AddQuadric(const Quadric &shape, int material,
+                              std::optional<AreaLightDescription> emission,
+                              std::optional<FloatTexture> alpha, AddToAggregate add) {
     emission = EmissionOutsideObjects(emission);
     PrimitiveAttributes attributes = Attributes(material, std::move(alpha));
     if (emission)
-        attributes.areaLightBase = AddAreaLights(*emission, 1, [&](int) { return Shape(sphere); });
-    scene->aggregate.AddSphere(sphere, attributes);
+        attributes.areaLightBase = AddAreaLights(*emission, 1, [&](int) { return Shape(shape); });
+    add(scene->aggregate, attributes);
+}
+
+void SceneBuilder::AddSphere(const Sphere &sphere, int material,
+                             std::optional<AreaLightDescription> emission,
+                             std::optional<FloatTexture> alpha) {
+    AddQuadric(sphere, material, std::move(emission), std::move(alpha),
+               [&](EmbreeAggregate &a, PrimitiveAttributes attrs) { a.AddSphere(sphere, attrs); });
+}
+
+void SceneBuilder::AddCylinder(const Cylinder &cylinder, int material,
+                               std::optional<AreaLightDescription> emission,
+                               std::optional<FloatTexture> alpha) {
+    AddQuadric(cylinder, material, std::move(emission), std::move(alpha),
+               [&](EmbreeAggregate &a, PrimitiveAttributes attrs) {
+                   a.AddCylinder(cylinder, attrs);
+               });
 }
 
 void SceneBuilder::AddDisk(const Disk &disk, int material,
                            std::optional<AreaLightDescription> emission,
                            std::optional<FloatTexture> alpha) {
-    emission = EmissionOutsideObjects(emission);
-    PrimitiveAttributes attributes = Attributes(material, std::move(alpha));
-    if (emission)
-        attributes.areaLightBase = AddAreaLights(*emission, 1, [&](int) { return Shape(disk); });
-    scene->aggregate.AddDisk(disk, attributes);
+    AddQuadric(disk, material, std::move(emission), std::move(alpha),
+               [&](EmbreeAggregate &a, PrimitiveAttributes attrs) { a.AddDisk(disk, attrs); });
 }
 
 std::optional<AreaLightDescription> SceneBuilder::EmissionOutsideObjects(

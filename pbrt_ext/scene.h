@@ -108,6 +108,9 @@ class SceneBuilder {
     void AddSphere(const Sphere &sphere, int material,
                    std::optional<AreaLightDescription> emission = {},
                    std::optional<FloatTexture> alpha = {});
+    void AddCylinder(const Cylinder &cylinder, int material,
+                     std::optional<AreaLightDescription> emission = {},
+                     std::optional<FloatTexture> alpha = {});
     void AddDisk(const Disk &disk, int material, std::optional<AreaLightDescription> emission = {},
                  std::optional<FloatTexture> alpha = {});
 
@@ -144,6 +147,12 @@ class SceneBuilder {
     std::optional<AreaLightDescription> EmissionOutsideObjects(
         std::optional<AreaLightDescription> emission) const;
 
+    // A sphere, cylinder or disk: one primitive, one area light if it emits; `add` puts it into
+    // the aggregate with its attributes.
+    template <typename Quadric, typename AddToAggregate>
+    void AddQuadric(const Quadric &shape, int material,
+                    std::optional<AreaLightDescription> emission,
+                    std::optional<FloatTexture> alpha, AddToAggregate add);
     // The attributes of a shape being added with this material and alpha texture.
     PrimitiveAttributes Attributes(int material, std::optional<FloatTexture> alpha) const;
     void CheckMedium(int medium) const;

@@ -1,5 +1,5 @@
-// Shapes: triangles, spheres, disks and bilinear patches (pbrt-v4's src/pbrt/shapes.h, reduced:
-// no curves or cylinders, no time, no ray differentials, no rounding-error intervals).
+// Shapes: triangles, spheres, cylinders, disks and bilinear patches (pbrt-v4's src/pbrt/shapes.h,
+// reduced: no curves, no time, no ray differentials, no rounding-error intervals).
 //
 // Conventions, as in pbrt-v4:
 //   - Render space = world space. Mesh vertices are stored in world space; spheres and disks keep
@@ -159,6 +159,38 @@ class Sphere {
     Float worldRadius;
 };
 
+// The side of a cylinder of the given radius about the object-space z axis, from zMin to zMax,
+// with azimuth in [0, phiMax] (degrees); open at both ends, as pbrt-v4's.
+class Cylinder {
+  public:
+    Cylinder(const Transform &worldFromObject, bool reverseOrientation, Float radius, Float zMin,
+             Float zMax, Float phiMaxDegrees);
+
+    Float Area() const { return worldArea; }
+    pstd::optional<QuadricIntersection> BasicIntersect(const Ray &ray, Float tMax) const;
+    SurfaceInteraction InteractionFromIntersection(const QuadricIntersection &isect,
+                                                   Vector3f wo) const;
+    pstd::optional<ShapeIntersection> Intersect(const Ray &ray, Float tMax = Infinity) const;
+    bool IntersectP(const Ray &ray, Float tMax = Infinity) const;
+    // Uniform in z and phi: uniform in area in object space; AreaPDF accounts for the transform.
+    pstd::optional<ShapeSample> Sample(Point2f u) const;
+    pstd::optional<ShapeSample> Sample(const ShapeSampleContext &ctx, Point2f u) const;
+    Float PDF(const ShapeSampleContext &ctx, Vector3f wi) const;
+    std::string ToString() const;
+
+    Bounds3f Bounds() const;
+
+  private:
+    bool FlipNormal() const { return reverseOrientation ^ transformSwapsHandedness; }
+    Point2f UV(Point3f pObj) const;
+    Float AreaPDF(Point3f pObj) const;
+
+    Transform worldFromObject, objectFromWorld;
+    bool reverseOrientation, transformSwapsHandedness;
+    Float radius, zMin, zMax, phiMax;
+    Float absDet, objectArea, worldArea;
+};
+
 // An annulus (innerRadius..radius) at z = height in object space, with azimuth in [0, phiMax]
 // (degrees); its normal is +z.
 class Disk {
@@ -276,7 +308,7 @@ class Shape {
     }
 
   private:
-    std::variant<Triangle, Sphere, Disk, BilinearPatch> shape;
+    std::variant<Triangle, Sphere, Cylinder, Disk, BilinearPatch> shape;
 };
 
 }  // namespace pbrt

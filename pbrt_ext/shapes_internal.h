@@ -71,6 +71,17 @@ inline void SetShadingGeometry(SurfaceInteraction *si, Normal3f ns, Vector3f dpd
     si->shading.dpdv = dpdvs;
 }
 
+// |det| of the transform's linear part: how it scales volume.
+inline Float AbsDeterminant(const Transform &t) {
+    Vector3f ax = t(Vector3f(1, 0, 0)), ay = t(Vector3f(0, 1, 0)), az = t(Vector3f(0, 0, 1));
+    return std::abs(Dot(ax, Cross(ay, az)));
+}
+
+// Nanson's formula: a linear map M scales area at unit normal n by |det M| |M^-T n|.
+inline Float AreaScale(const Transform &t, Float absDet, Normal3f unitNormal) {
+    return absDet * Length(t(unitNormal));
+}
+
 // A point sampled on a shape, as ShapeSample carries it.
 inline ShapeSample MakeSample(Point3f p, Normal3f n, Point2f uv, Float pdf) {
     SurfaceInteraction si;

@@ -58,6 +58,8 @@ TEST(EmbreeAggregate, HitsMatchTheShapes) {
     agg.AddBilinearPatchMesh(patches, {4, -1});
     agg.AddSphere(sphere, {5, 20});
     agg.AddDisk(disk, {6, -1});
+    Cylinder cylinder(Translate(Vector3f(15, 0, 0)), false, 1, -1, 1, 270);
+    agg.AddCylinder(cylinder, {9, 30});
     agg.Commit();
 
     struct Case {
@@ -71,6 +73,8 @@ TEST(EmbreeAggregate, HitsMatchTheShapes) {
         {Ray(Point3f(0.4f, 5.3f, 3), Vector3f(0, 0, -2)), BilinearPatch(patches.get(), 0), 4, -1},
         {Ray(Point3f(5.2f, -0.1f, 4), Vector3f(0, 0, -1)), sphere, 5, 20},
         {Ray(Point3f(10.5f, 0.1f, 1), Vector3f(0, 0.1f, -1)), disk, 6, -1},
+        // Through the missing quarter (phi in 270..360) onto the inside of the far wall.
+        {Ray(Point3f(15.5f, -3, 0.2f), Vector3f(0, 1, 0)), cylinder, 9, 30},
     };
     for (const Case &c : cases) {
         pstd::optional<ShapeIntersection> got = agg.Intersect(c.ray);
@@ -87,7 +91,7 @@ TEST(EmbreeAggregate, HitsMatchTheShapes) {
 
     Bounds3f b = agg.WorldBound();
     EXPECT_LE(b.pMin.x, -0.0f + 1e-4f);
-    EXPECT_GE(b.pMax.x, 11 - 1e-4f);
+    EXPECT_GE(b.pMax.x, 16 - 1e-4f);
     EXPECT_GE(b.pMax.y, 6 - 1e-4f);
 }
 

@@ -355,10 +355,14 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
          ":4:5: error: grid medium has 5 \"density\" values; expected nx*ny*nz = 8"},
         // The NanoVDB reader's own message follows the resolved file name.
         {"load_missing_nvdb.pbrt", ":3:49: error: "},
-        // Subdivision surfaces: the control mesh's faults, at the shape.
+        // Cylinders without area; subdivision surfaces' control meshes.
         {"load_loopsubdiv_nonmanifold.pbrt",
          ":3:1: error: loopsubdiv: edge 0-1 is used twice in the same direction (triangles 0 "
          "and 1): the mesh must be a consistently oriented manifold"},
+        {"load_cylinder_radius.pbrt",
+         ":3:18: error: cylinder \"radius\" is -1; expected a finite value > 0"},
+        {"load_cylinder_heights.pbrt",
+         ":3:1: error: cylinder \"zmin\" 1 and \"zmax\" 1: expected two different finite heights"},
         {"load_loopsubdiv_levels.pbrt",
          ":3:20: error: loopsubdiv \"levels\" is -1; expected 0 or more"},
         {"load_corrupt_nvdb.pbrt", ":3:49: error: "}};
