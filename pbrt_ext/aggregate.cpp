@@ -46,7 +46,8 @@ void SetBounds(const Bounds3f &b, RTCBounds *out) {
     out->upper_z = b.pMax.z + pad.z;
 }
 
-RTCRay ToEmbree(const Ray &ray, Float tMax) {
+// time: the ray's time as a fraction of the moving instances' interval (Embree's [0, 1]).
+RTCRay ToEmbree(const Ray &ray, Float tMax, Float time) {
     RTCRay r;
     r.org_x = ray.o.x;
     r.org_y = ray.o.y;
@@ -56,7 +57,7 @@ RTCRay ToEmbree(const Ray &ray, Float tMax) {
     r.dir_z = ray.d.z;
     r.tnear = 0;
     r.tfar = tMax;
-    r.time = 0;
+    r.time = time;
     r.mask = ~0u;
     r.id = 0;
     r.flags = 0;
@@ -275,8 +276,21 @@ struct SceneData {
 
 struct InstanceData {
     int objectId;
-    Transform worldFromInstance;
+    AnimatedTransform worldFromInstance;
 };
+
+// A keyframe as Embree's instance motion blur takes it.
+RTCQuaternionDecomposition ToEmbree(const TransformDecomposition &d) {
+    RTCQuaternionDecomposition q;
+    rtcInitQuaternionDecomposition(&q);
+    rtcQuaternionDecompositionSetScale(&q, d.scale[0][0], d.scale[1][1], d.scale[2][2]);
+    rtcQuaternionDecompositionSetSkew(&q, d.scale[0][1], d.scale[0][2], d.scale[1][2]);
+    rtcQuaternionDecompositionSetQuaternion(&q, d.rotation.w, d.rotation.v.x, d.rotation.v.y,
+                                            d.rotation.v.z);
+    rtcQuaternionDecompositionSetTranslation(&q, d.translation.x, d.translation.y,
+                                             d.translation.z);
+    return q;
+}
 
 }  // namespace
 
@@ -286,6 +300,8 @@ struct EmbreeAggregate::Impl {
     std::vector<SceneData> objects;
     std::vector<std::string> objectNames;
     std::vector<InstanceData> instances;
+    // The interval of the moving instances' keyframes; a ray's time is mapped into it.
+    AnimatedTransform motionTimes;
     int openObject = -1;
     bool committed = false;
     // Stable addresses for Embree's user pointers.
@@ -361,6 +377,19 @@ struct EmbreeAggregate::Impl {
         copies.push_back(shape);
         return AddUserGeometry<QuadricCallbacks<Quadric>>(kQuadricKind<Quadric>, &copies.back(),
                                                           1, attrs);
+    }
+
+    void SetMotionTimes(const AnimatedTransform &t) {
+        bool first = !motionTimes.IsAnimated();
+        if (!first && (t.StartTime() != motionTimes.StartTime() ||
+                       t.EndTime() != motionTimes.EndTime()))
+            throw std::runtime_error("moving instances with different time intervals");
+        if (first)
+            motionTimes = t;
+    }
+    // The ray's time as Embree's fraction of the moving instances' interval.
+    Float EmbreeTime(Float time) const {
+        return motionTimes.IsAnimated() ? motionTimes.Fraction(time) : 0;
     }
 
     void Check(const char *what) const {
@@ -474,6 +503,10 @@ void EmbreeAggregate::EndObject() {
 }
 
 int EmbreeAggregate::AddInstance(int objectId, const Transform &worldFromInstance) {
+    return AddInstance(objectId, AnimatedTransform(worldFromInstance));
+}
+
+int EmbreeAggregate::AddInstance(int objectId, const AnimatedTransform &worldFromInstance) {
     if (objectId < 0 || objectId >= int(impl->objects.size()))
         throw std::runtime_error("instance of unknown object " + std::to_string(objectId));
     if (objectId == impl->openObject)
@@ -485,11 +518,20 @@ int EmbreeAggregate::AddInstance(int objectId, const Transform &worldFromInstanc
                                  "\": objects do not nest");
     RTCGeometry geom = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(geom, impl->objects[objectId].scene);
-    const SquareMatrix<4> &m = worldFromInstance.GetMatrix();
-    float xfm[12];
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 4; ++c) xfm[4 * r + c] = m[r][c];
-    rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+    if (worldFromInstance.IsAnimated()) {
+        impl->SetMotionTimes(worldFromInstance);
+        rtcSetGeometryTimeStepCount(geom, 2);
+        for (unsigned step = 0; step < 2; ++step) {
+            RTCQuaternionDecomposition q = ToEmbree(worldFromInstance.Keyframes()[step]);
+            rtcSetGeometryTransformQuaternion(geom, step, &q);
+        }
+    } else {
+        const SquareMatrix<4> &m = worldFromInstance.Start().GetMatrix();
+        float xfm[12];
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c) xfm[4 * r + c] = m[r][c];
+        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, xfm);
+    }
     impl->instances.push_back({objectId, worldFromInstance});
     GeometryRecord record{GeometryKind::Instance, nullptr, {}, int(impl->instances.size()) - 1};
     return impl->Attach(geom, record);
@@ -509,7 +551,7 @@ pstd::optional<ShapeIntersection> EmbreeAggregate::Intersect(const Ray &ray, Flo
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh;
-    rh.ray = ToEmbree(ray, tMax);
+    rh.ray = ToEmbree(ray, tMax, impl->EmbreeTime(ray.time));
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl->world.scene, &context, &rh);
@@ -518,19 +560,22 @@ pstd::optional<ShapeIntersection> EmbreeAggregate::Intersect(const Ray &ray, Flo
 
     // A hit inside an instance is described in the instance's space, then carried to the world.
     const SceneData *scene = &impl->world;
-    const Transform *worldFromInstance = nullptr;
+    const InstanceData *instance = nullptr;
     if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
         const GeometryRecord &inst = impl->world.geometries[rh.hit.instID[0]];
-        const InstanceData &data = impl->instances[inst.instanceIndex];
-        scene = &impl->objects[data.objectId];
-        worldFromInstance = &data.worldFromInstance;
+        instance = &impl->instances[inst.instanceIndex];
+        scene = &impl->objects[instance->objectId];
     }
     const GeometryRecord &g = scene->geometries[rh.hit.geomID];
     Vector3f wo = -Normalize(ray.d);
     SurfaceInteraction si = impl->Interaction(g, rh, wo);
-    if (worldFromInstance)
-        si = TransformInteraction(*worldFromInstance, si);
+    if (instance) {
+        const AnimatedTransform &motion = instance->worldFromInstance;
+        si = TransformInteraction(
+            motion.IsAnimated() ? motion.Interpolate(ray.time) : motion.Start(), si);
+    }
     si.wo = wo;
+    si.time = ray.time;
     si.materialIndex = g.attrs.materialIndex;
     si.mediumInterface = g.attrs.mediumInterface.IsMediumTransition()
                              ? g.attrs.mediumInterface
@@ -546,7 +591,7 @@ bool EmbreeAggregate::IntersectP(const Ray &ray, Float tMax) const {
     assert(impl->committed);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRay r = ToEmbree(ray, tMax);
+    RTCRay r = ToEmbree(ray, tMax, impl->EmbreeTime(ray.time));
     rtcOccluded1(impl->world.scene, &context, &r);
     return r.tfar < 0;
 }

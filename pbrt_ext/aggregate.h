@@ -16,6 +16,7 @@
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/ray.h"
 #include "pbrt_ext/shapes.h"
+#include "pbrt_ext/util/animatedtransform.h"
 #include "pbrt_ext/textures.h"
 #include "pbrt_ext/util/bounds.h"
 #include "pbrt_ext/util/pstd.h"
@@ -73,6 +74,10 @@ class EmbreeAggregate {
     int BeginObject(const std::string &name);
     void EndObject();
     int AddInstance(int objectId, const Transform &worldFromInstance);
+    // A moving instance: Embree's instance motion blur between the two keyframes, a ray at
+    // ray.time meeting the object where it is then. Every moving instance of an aggregate
+    // shares one time interval (TransformTimes); another one throws std::runtime_error.
+    int AddInstance(int objectId, const AnimatedTransform &worldFromInstance);
 
     // Builds the acceleration structures; throws std::runtime_error if Embree reports an error.
     void Commit();

@@ -1,6 +1,7 @@
 #include "pbrt_ext/cameras.h"
 
 #include <cstdio>
+#include <utility>
 
 namespace pbrt {
 
@@ -10,10 +11,10 @@ Bounds2f DefaultScreenWindow(Point2i fullResolution) {
     return Bounds2f(Point2f(-1, -1 / frame), Point2f(1, 1 / frame));
 }
 
-ProjectiveCamera::ProjectiveCamera(Transform worldFromCamera, Point2i fullResolution,
+ProjectiveCamera::ProjectiveCamera(CameraMotion worldFromCamera, Point2i fullResolution,
                                    Transform screenFromCamera, Bounds2f screenWindow, Float lensRadius,
                                    Float focalDistance)
-    : worldFromCamera(worldFromCamera), screenFromCamera(screenFromCamera), lensRadius(lensRadius),
+    : worldFromCamera(std::move(worldFromCamera)), screenFromCamera(screenFromCamera), lensRadius(lensRadius),
       focalDistance(focalDistance) {
     // Screen window -> NDC with the top-left corner at the origin (y in [-1, 0]), then -> pixels
     // with y flipped, since raster y runs down.
@@ -26,9 +27,10 @@ ProjectiveCamera::ProjectiveCamera(Transform worldFromCamera, Point2i fullResolu
     cameraFromRaster = Inverse(screenFromCamera) * screenFromRaster;
 }
 
-PerspectiveCamera::PerspectiveCamera(Transform worldFromCamera, Point2i fullResolution, Bounds2f screenWindow,
-                                     Float fov, Float lensRadius, Float focalDistance)
-    : ProjectiveCamera(worldFromCamera, fullResolution, Perspective(fov, 1e-2f, 1000.f), screenWindow,
+PerspectiveCamera::PerspectiveCamera(CameraMotion worldFromCamera, Point2i fullResolution,
+                                     Bounds2f screenWindow, Float fov, Float lensRadius,
+                                     Float focalDistance)
+    : ProjectiveCamera(std::move(worldFromCamera), fullResolution, Perspective(fov, 1e-2f, 1000.f), screenWindow,
                        lensRadius, focalDistance),
       fov(fov) {}
 
@@ -39,9 +41,9 @@ std::string PerspectiveCamera::ToString() const {
     return buf;
 }
 
-OrthographicCamera::OrthographicCamera(Transform worldFromCamera, Point2i fullResolution,
+OrthographicCamera::OrthographicCamera(CameraMotion worldFromCamera, Point2i fullResolution,
                                        Bounds2f screenWindow, Float lensRadius, Float focalDistance)
-    : ProjectiveCamera(worldFromCamera, fullResolution, Orthographic(0, 1), screenWindow, lensRadius,
+    : ProjectiveCamera(std::move(worldFromCamera), fullResolution, Orthographic(0, 1), screenWindow, lensRadius,
                        focalDistance) {}
 
 std::string OrthographicCamera::ToString() const {

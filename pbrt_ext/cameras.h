@@ -1,5 +1,5 @@
 // Cameras: rays from film positions (pbrt-v4's cameras.h, reduced to the perspective and
-// orthographic cameras, without time, media, ray differentials or importance functions).
+// orthographic cameras, without media, ray differentials or importance functions).
 //
 // Spaces as in pbrt-v4: camera space looks down +z with +y up and +x to the right of the image;
 // screen space is the image plane with the screen window's extent; raster space counts pixels of
@@ -11,6 +11,7 @@
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/ray.h"
 #include "pbrt_ext/samplers.h"
+#include "pbrt_ext/util/animatedtransform.h"
 #include "pbrt_ext/util/bounds.h"
 #include "pbrt_ext/util/pstd.h"
 #include "pbrt_ext/util/sampling.h"
@@ -25,11 +26,37 @@
 
 namespace pbrt {
 
-// pFilm in raster coordinates of the full resolution; pLens in [0, 1)^2.
+// pFilm in raster coordinates of the full resolution; pLens and time in [0, 1).
 struct CameraSample {
     Point2f pFilm;
     Point2f pLens;
+    Float time = 0;
     Float filterWeight = 1;
+};
+
+// Where the camera is while its shutter is open (pbrt-v4's CameraTransform with the shutter of
+// CameraBaseParameters): a ray's time is drawn uniformly over [shutterOpen, shutterClose], and a
+// moving camera is placed where it is at that time.
+class CameraMotion {
+  public:
+    CameraMotion(const Transform &worldFromCamera) : worldFromCamera(worldFromCamera) {}
+    CameraMotion(const AnimatedTransform &worldFromCamera, Float shutterOpen, Float shutterClose)
+        : worldFromCamera(worldFromCamera), shutterOpen(shutterOpen), shutterClose(shutterClose) {}
+
+    // The camera-space ray r, given the time u picks, in world space.
+    Ray ToWorld(Ray r, Float u) const {
+        r.time = Lerp(u, shutterOpen, shutterClose);
+        if (!worldFromCamera.IsAnimated())
+            return worldFromCamera.Start()(r);
+        return worldFromCamera.Interpolate(r.time)(r);
+    }
+    // At the shutter's opening.
+    const Transform &Start() const { return worldFromCamera.Start(); }
+    bool IsAnimated() const { return worldFromCamera.IsAnimated(); }
+
+  private:
+    AnimatedTransform worldFromCamera;
+    Float shutterOpen = 0, shutterClose = 1;
 };
 
 struct CameraRay {
@@ -45,11 +72,12 @@ Bounds2f DefaultScreenWindow(Point2i fullResolution);
 // and the thin-lens model: a lens of lensRadius focused at focalDistance along +z.
 class ProjectiveCamera {
   public:
-    const Transform &WorldFromCamera() const { return worldFromCamera; }
+    const Transform &WorldFromCamera() const { return worldFromCamera.Start(); }
 
   protected:
-    ProjectiveCamera(Transform worldFromCamera, Point2i fullResolution, Transform screenFromCamera,
-                     Bounds2f screenWindow, Float lensRadius, Float focalDistance);
+    ProjectiveCamera(CameraMotion worldFromCamera, Point2i fullResolution,
+                     Transform screenFromCamera, Bounds2f screenWindow, Float lensRadius,
+                     Float focalDistance);
 
     // The ray through pLens (on the lens disk) toward where the pinhole ray r reaches the plane
     // of focus, so that points on that plane stay sharp.
@@ -61,21 +89,22 @@ class ProjectiveCamera {
         return Ray(o, Normalize(pFocus - o));
     }
 
-    Transform worldFromCamera, screenFromCamera, cameraFromRaster, rasterFromScreen, screenFromRaster;
+    CameraMotion worldFromCamera;
+    Transform screenFromCamera, cameraFromRaster, rasterFromScreen, screenFromRaster;
     Float lensRadius, focalDistance;
 };
 
 // fov (degrees) spans the shorter image axis with the default screen window.
 class PerspectiveCamera : public ProjectiveCamera {
   public:
-    PerspectiveCamera(Transform worldFromCamera, Point2i fullResolution, Bounds2f screenWindow, Float fov,
-                      Float lensRadius = 0, Float focalDistance = 1e6f);
+    PerspectiveCamera(CameraMotion worldFromCamera, Point2i fullResolution, Bounds2f screenWindow,
+                      Float fov, Float lensRadius = 0, Float focalDistance = 1e6f);
 
     static constexpr const char *Name() { return "perspective"; }
     PBRT_CPU_GPU pstd::optional<CameraRay> GenerateRay(CameraSample sample) const {
         Point3f pCamera = cameraFromRaster(Point3f(sample.pFilm.x, sample.pFilm.y, 0));
         Ray r(Point3f(0, 0, 0), Normalize(Vector3f(pCamera)));
-        return CameraRay{worldFromCamera(FocusThroughLens(r, sample.pLens))};
+        return CameraRay{worldFromCamera.ToWorld(FocusThroughLens(r, sample.pLens), sample.time)};
     }
     std::string ToString() const;
 
@@ -86,14 +115,14 @@ class PerspectiveCamera : public ProjectiveCamera {
 // Parallel rays along +z; the screen window is the visible extent in camera-space units.
 class OrthographicCamera : public ProjectiveCamera {
   public:
-    OrthographicCamera(Transform worldFromCamera, Point2i fullResolution, Bounds2f screenWindow,
-                       Float lensRadius = 0, Float focalDistance = 1e6f);
+    OrthographicCamera(CameraMotion worldFromCamera, Point2i fullResolution,
+                       Bounds2f screenWindow, Float lensRadius = 0, Float focalDistance = 1e6f);
 
     static constexpr const char *Name() { return "orthographic"; }
     PBRT_CPU_GPU pstd::optional<CameraRay> GenerateRay(CameraSample sample) const {
         Point3f pCamera = cameraFromRaster(Point3f(sample.pFilm.x, sample.pFilm.y, 0));
         Ray r(pCamera, Vector3f(0, 0, 1));
-        return CameraRay{worldFromCamera(FocusThroughLens(r, sample.pLens))};
+        return CameraRay{worldFromCamera.ToWorld(FocusThroughLens(r, sample.pLens), sample.time)};
     }
     std::string ToString() const;
 };
@@ -124,13 +153,14 @@ class Camera {
     Variant camera;
 };
 
-// The camera sample for pixel pPixel (pbrt-v4's GetCameraSample, without time): the film
-// position is offset from the pixel center by a point drawn from the filter, whose weight the
-// film applies.
+// The camera sample for pixel pPixel (pbrt-v4's GetCameraSample): the film position is offset
+// from the pixel center by a point drawn from the filter, whose weight the film applies; then
+// the time and the lens position, in pbrt-v4's order of sample dimensions.
 inline CameraSample GetCameraSample(Sampler &sampler, Point2i pPixel, const Filter &filter) {
     FilterSample fs = filter.Sample(sampler.GetPixel2D());
     CameraSample cs;
     cs.pFilm = Point2f(pPixel.x + 0.5f + fs.p.x, pPixel.y + 0.5f + fs.p.y);
+    cs.time = sampler.Get1D();
     cs.pLens = sampler.Get2D();
     cs.filterWeight = fs.weight;
     return cs;

@@ -240,10 +240,25 @@ Float ExposureTime(const CameraSceneEntity &e) {
     return exposure;
 }
 
+// The camera's placement over its shutter interval; a moving camera's keyframes must be
+// invertible affine transforms.
+CameraMotion CameraMotionOf(const CameraSceneEntity &e) {
+    const ParameterDictionary &p = e.parameters;
+    Float open = p.GetOneFloat("shutteropen", 0), close = p.GetOneFloat("shutterclose", 1);
+    try {
+        return CameraMotion(AnimatedTransform(Inverse(e.cameraFromWorld.t[0]),
+                                              e.transformStartTime,
+                                              Inverse(e.cameraFromWorld.t[1]), e.transformEndTime),
+                            open, close);
+    } catch (const std::invalid_argument &error) {
+        throw ParseError(e.loc, std::string("the camera's transform: ") + error.what());
+    }
+}
+
 Camera CreateCamera(const CameraSceneEntity &e, const RGBFilm &film) {
     const ParameterDictionary &p = e.parameters;
-    ExposureTime(e);  // the film's imaging ratio uses it; reading it marks it used
-    Transform worldFromCamera = Inverse(e.cameraFromWorld);
+    ExposureTime(e);  // the film's imaging ratio uses it, and it is checked there
+    CameraMotion worldFromCamera = CameraMotionOf(e);
     Float lensRadius = p.GetOneFloat("lensradius", 0),
           focalDistance = p.GetOneFloat("focaldistance", 1e6f);
     Bounds2f window = ScreenWindow(p, film);

@@ -1,4 +1,4 @@
-// Rays and their safe spawning from surfaces (pbrt-v4's src/pbrt/ray.h, reduced: no time, no
+// Rays and their safe spawning from surfaces (pbrt-v4's src/pbrt/ray.h, reduced: no
 // differentials).
 #pragma once
 
@@ -10,12 +10,14 @@ namespace pbrt {
 
 struct Ray {
     Ray() = default;
-    PBRT_CPU_GPU Ray(Point3f o, Vector3f d, int medium = -1) : o(o), d(d), medium(medium) {}
+    PBRT_CPU_GPU Ray(Point3f o, Vector3f d, int medium = -1, Float time = 0)
+        : o(o), d(d), medium(medium), time(time) {}
     PBRT_CPU_GPU Point3f operator()(Float t) const { return o + d * t; }
 
     Point3f o;
     Vector3f d;
     int medium = -1;  // the medium the origin lies in: an index into Scene::media, -1 vacuum
+    Float time = 0;   // within the camera's shutter interval: where moving shapes are
 };
 
 // Moves a ray origin off the surface at p along the geometric normal n, to the side w leaves

@@ -125,7 +125,8 @@ void SceneBuilder::EndObject() {
     currentObject.clear();
 }
 
-void SceneBuilder::AddObjectInstance(const std::string &name, const Transform &worldFromInstance) {
+void SceneBuilder::AddObjectInstance(const std::string &name,
+                                     const AnimatedTransform &worldFromInstance) {
     auto it = objects.find(name);
     if (it == objects.end())
         throw std::invalid_argument("instance of undefined object \"" + name + "\"");

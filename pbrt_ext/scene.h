@@ -120,7 +120,10 @@ class SceneBuilder {
     // one light). Unknown or repeated names throw std::invalid_argument.
     void BeginObject(const std::string &name);
     void EndObject();
-    void AddObjectInstance(const std::string &name, const Transform &worldFromInstance);
+    void AddObjectInstance(const std::string &name, const AnimatedTransform &worldFromInstance);
+    void AddObjectInstance(const std::string &name, const Transform &worldFromInstance) {
+        AddObjectInstance(name, AnimatedTransform(worldFromInstance));
+    }
 
     // Lights that are not attached to shapes: point, spot, distant, infinite.
     void AddLight(Light light);

@@ -1,5 +1,7 @@
 #include "pbrt_ext/scenedescription.h"
 
+#include <fmt/format.h>
+
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -95,9 +97,21 @@ void BasicSceneBuilder::VerifyWorld(const char *directive, const FileLoc &loc) {
                              "\" is not allowed before WorldBegin; expected it after WorldBegin");
 }
 
-void BasicSceneBuilder::SetCTM(const class Transform &ctm) {
-    if (graphicsState.startTransformActive) graphicsState.ctm = ctm;
+template <typename F>
+void BasicSceneBuilder::ForActiveTransforms(F f) {
+    for (int i = 0; i < 2; ++i)
+        if (graphicsState.activeTransformBits & (1 << i))
+            graphicsState.ctm.t[i] = f(graphicsState.ctm.t[i]);
 }
+
+const Transform &BasicSceneBuilder::StaticCTM(const char *what, const FileLoc &loc) {
+    if (graphicsState.ctm.IsAnimated() && FirstTime(std::string("moving ") + what))
+        WarningAt(loc, "%s do not move over the shutter interval (as in pbrt-v4); the start "
+                       "transform is used", what);
+    return graphicsState.ctm.t[0];
+}
+
+static TransformSet Inverse(const TransformSet &s) { return {{Inverse(s.t[0]), Inverse(s.t[1])}}; }
 
 bool BasicSceneBuilder::FirstTime(const std::string &topic) { return warned.insert(topic).second; }
 
@@ -166,40 +180,51 @@ void BasicSceneBuilder::Camera(const std::string &name, ParsedParameterVector pa
     scene->camera.parameters = ParameterDictionary(std::move(params));
     scene->camera.loc = loc;
     scene->camera.cameraFromWorld = graphicsState.ctm;
+    scene->camera.transformStartTime = scene->transformStartTime;
+    scene->camera.transformEndTime = scene->transformEndTime;
     scene->camera.medium = graphicsState.outsideMedium;
     namedCoordinateSystems["camera"] = Inverse(graphicsState.ctm);
 }
 
-void BasicSceneBuilder::TransformTimes(Float, Float, FileLoc loc) {
-    // Without animated transforms the shutter interval changes nothing.
+void BasicSceneBuilder::TransformTimes(Float start, Float end, FileLoc loc) {
     VerifyOptions("TransformTimes", loc);
+    if (!(end >= start) || !IsFinite(start) || !IsFinite(end))
+        throw ParseError(loc, fmt::format("TransformTimes {} {}: expected finite times with the "
+                                          "end not before the start", start, end));
+    scene->transformStartTime = start;
+    scene->transformEndTime = end;
 }
 
 void BasicSceneBuilder::WorldBegin(FileLoc loc) {
     VerifyOptions("WorldBegin", loc);
     currentBlock = BlockState::WorldBlock;
     graphicsState.ctm = {};
-    graphicsState.startTransformActive = true;
+    graphicsState.activeTransformBits = kAllTransforms;
     namedCoordinateSystems["world"] = {};
 }
 
 // ---- Transformations ----------------------------------------------------------------------
 
-void BasicSceneBuilder::Identity(FileLoc) { SetCTM({}); }
+void BasicSceneBuilder::Identity(FileLoc) {
+    ForActiveTransforms([](const class Transform &) { return pbrt::Transform(); });
+}
 
 void BasicSceneBuilder::Translate(Float dx, Float dy, Float dz, FileLoc) {
-    SetCTM(graphicsState.ctm * pbrt::Translate(Vector3f(dx, dy, dz)));
+    ForActiveTransforms(
+        [&](const class Transform &t) { return t * pbrt::Translate(Vector3f(dx, dy, dz)); });
 }
 
 void BasicSceneBuilder::Scale(Float sx, Float sy, Float sz, FileLoc) {
-    SetCTM(graphicsState.ctm * pbrt::Scale(sx, sy, sz));
+    ForActiveTransforms([&](const class Transform &t) { return t * pbrt::Scale(sx, sy, sz); });
 }
 
 void BasicSceneBuilder::Rotate(Float angle, Float ax, Float ay, Float az, FileLoc loc) {
     // A zero axis would fill the CTM with NaN, far from the directive that caused it.
     if (ax == 0 && ay == 0 && az == 0)
         throw ParseError(loc, "Rotate about the zero vector; expected a nonzero axis");
-    SetCTM(graphicsState.ctm * pbrt::Rotate(angle, Vector3f(ax, ay, az)));
+    ForActiveTransforms([&](const class Transform &t) {
+        return t * pbrt::Rotate(angle, Vector3f(ax, ay, az));
+    });
 }
 
 void BasicSceneBuilder::LookAt(Float ex, Float ey, Float ez, Float lx, Float ly, Float lz, Float ux,
@@ -210,7 +235,7 @@ void BasicSceneBuilder::LookAt(Float ex, Float ey, Float ez, Float lx, Float ly,
     } catch (const std::runtime_error &e) {
         throw ParseError(loc, e.what());
     }
-    SetCTM(graphicsState.ctm * lookAt);
+    ForActiveTransforms([&](const class Transform &t) { return t * lookAt; });
 }
 
 // The file writes the matrix by columns (pbrt-v4): the 16 numbers are the transpose of m.
@@ -222,11 +247,11 @@ static Transform FromFileMatrix(const Float tr[16]) {
 }
 
 void BasicSceneBuilder::ConcatTransform(Float transform[16], FileLoc) {
-    SetCTM(graphicsState.ctm * FromFileMatrix(transform));
+    ForActiveTransforms([&](const class Transform &t) { return t * FromFileMatrix(transform); });
 }
 
 void BasicSceneBuilder::Transform(Float transform[16], FileLoc) {
-    SetCTM(FromFileMatrix(transform));
+    ForActiveTransforms([&](const class Transform &) { return FromFileMatrix(transform); });
 }
 
 void BasicSceneBuilder::CoordinateSystem(const std::string &name, FileLoc) {
@@ -239,21 +264,18 @@ void BasicSceneBuilder::CoordSysTransform(const std::string &name, FileLoc loc) 
         throw ParseError(loc, "unknown coordinate system \"" + name +
                                   "\"; expected \"camera\", \"world\" or a name given to "
                                   "CoordinateSystem before");
-    SetCTM(it->second);
+    graphicsState.ctm = it->second;  // both ends, whichever are active (pbrt-v4)
 }
 
-void BasicSceneBuilder::ActiveTransformAll(FileLoc) { graphicsState.startTransformActive = true; }
-
-void BasicSceneBuilder::ActiveTransformStartTime(FileLoc loc) { SetActiveTransform(true, loc); }
-
-void BasicSceneBuilder::ActiveTransformEndTime(FileLoc loc) { SetActiveTransform(false, loc); }
-
-// Choosing one end of the shutter interval only matters for motion blur, which is not rendered.
-void BasicSceneBuilder::SetActiveTransform(bool start, const FileLoc &loc) {
-    if (FirstTime("motion"))
-        WarningAt(loc, "motion blur is not supported; only the start-time transform is used");
-    graphicsState.startTransformActive = start;
+void BasicSceneBuilder::ActiveTransformAll(FileLoc) {
+    graphicsState.activeTransformBits = kAllTransforms;
 }
+
+void BasicSceneBuilder::ActiveTransformStartTime(FileLoc) {
+    graphicsState.activeTransformBits = 1;
+}
+
+void BasicSceneBuilder::ActiveTransformEndTime(FileLoc) { graphicsState.activeTransformBits = 2; }
 
 // ---- Media --------------------------------------------------------------------------------
 
@@ -265,7 +287,7 @@ void BasicSceneBuilder::MakeNamedMedium(const std::string &name, ParsedParameter
     scene->media[name] = TransformedSceneEntity(
         SceneEntity(name, ParameterDictionary(std::move(params), graphicsState.mediumAttributes),
                     loc),
-        graphicsState.ctm);
+        StaticCTM("media", loc));
 }
 
 // Names are checked at EndOfFiles: pbrt-v4 lets MakeNamedMedium come after its use.
@@ -361,7 +383,7 @@ void BasicSceneBuilder::Texture(const std::string &name, const std::string &type
     textures[name] = TransformedSceneEntity(
         SceneEntity(texname,
                     ParameterDictionary(std::move(params), graphicsState.textureAttributes), loc),
-        graphicsState.ctm);
+        StaticCTM("textures", loc));
 }
 
 void BasicSceneBuilder::Material(const std::string &name, ParsedParameterVector params,
@@ -398,7 +420,7 @@ void BasicSceneBuilder::LightSource(const std::string &name, ParsedParameterVect
     scene->lights.push_back(TransformedSceneEntity(
         SceneEntity(name, ParameterDictionary(std::move(params), graphicsState.lightAttributes),
                     loc),
-        graphicsState.ctm));
+        StaticCTM("lights", loc)));
 }
 
 void BasicSceneBuilder::AreaLightSource(const std::string &name, ParsedParameterVector params,
@@ -418,7 +440,8 @@ void BasicSceneBuilder::Shape(const std::string &name, ParsedParameterVector par
     ShapeSceneEntity shape;
     static_cast<SceneEntity &>(shape) = SceneEntity(
         name, ParameterDictionary(std::move(params), graphicsState.shapeAttributes), loc);
-    shape.worldFromObject = graphicsState.ctm;
+    shape.worldFromObject = graphicsState.ctm.t[0];
+    shape.worldFromObjectEnd = graphicsState.ctm.t[1];
     shape.reverseOrientation = graphicsState.reverseOrientation;
     shape.materialIndex = graphicsState.currentMaterialIndex;
     shape.materialName = graphicsState.currentMaterialName;
@@ -426,6 +449,19 @@ void BasicSceneBuilder::Shape(const std::string &name, ParsedParameterVector par
     shape.insideObject = activeObject;
     shape.insideMedium = graphicsState.insideMedium;
     shape.outsideMedium = graphicsState.outsideMedium;
+    if (shape.IsAnimated() && !activeObject.empty()) {
+        // Embree instances one level deep: a moving shape inside an object does not move.
+        if (FirstTime("moving shape in object"))
+            WarningAt(loc, "shapes inside ObjectBegin do not move; move the instances instead "
+                           "(the start transform is used)");
+        shape.worldFromObjectEnd = shape.worldFromObject;
+    }
+    if (shape.IsAnimated() && shape.areaLight) {
+        if (FirstTime("moving area light"))
+            WarningAt(loc, "moving shapes do not emit (area lights on animated shapes are not "
+                           "supported, as in pbrt-v4); the emission is ignored");
+        shape.areaLight.reset();
+    }
     if (!activeObject.empty())
         scene->instanceDefinitions[activeObject].shapeIndices.push_back(int(scene->shapes.size()));
     scene->shapes.push_back(std::move(shape));

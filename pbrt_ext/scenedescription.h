@@ -1,6 +1,5 @@
 // The scene as the file describes it: pbrt-v4's BasicSceneBuilder (the ParserTarget that tracks
-// the graphics state) and the entities of its BasicScene, reduced to what this renderer has: no
-// animated transforms, render space = world space.
+// the graphics state) and the entities of its BasicScene, with render space = world space.
 //
 // Everything here is plain data: names, unevaluated ParameterDictionary objects and the FileLoc
 // of the directive that made each entity, so that the conversion to a SceneBuilder (which
@@ -43,13 +42,23 @@ struct TransformedSceneEntity : SceneEntity {
     Transform worldFromObject;
 };
 
+// The CTM at the start and the end of the shutter interval (pbrt-v4's TransformSet): the two
+// differ for what moves.
+struct TransformSet {
+    Transform t[2];
+    bool IsAnimated() const { return !(t[0] == t[1]); }
+};
+
 struct CameraSceneEntity : SceneEntity {
-    Transform cameraFromWorld;
+    TransformSet cameraFromWorld;
+    Float transformStartTime = 0, transformEndTime = 1;  // the TransformTimes before Camera
     std::string medium;  // the outside medium in force at Camera; empty: vacuum
 };
 
 struct ShapeSceneEntity : SceneEntity {
-    Transform worldFromObject;
+    Transform worldFromObject;  // at the start of the shutter interval
+    Transform worldFromObjectEnd;
+    bool IsAnimated() const { return !(worldFromObject == worldFromObjectEnd); }
     bool reverseOrientation = false;
     // The material in force: an index into SceneDescription::materials, or -1 and the name of a
     // named material (pbrt-v4's pair; whichever of Material and NamedMaterial came last wins).
@@ -73,7 +82,7 @@ struct InstanceDefinitionSceneEntity {
 struct InstanceSceneEntity {
     std::string name;  // the object placed
     FileLoc loc;
-    Transform worldFromInstance;
+    TransformSet worldFromInstance;
 };
 
 // An `Option "type name" value` directive; the value is validated for the option's type and kept
@@ -88,6 +97,8 @@ struct SceneDescription {
     CameraSceneEntity camera;
     SceneEntity film, sampler, integrator, filter, accelerator;
     std::map<std::string, SceneOption> options;  // by pbrt-v4's normalized option name
+    // TransformTimes: the times of the CTM's two ends.
+    Float transformStartTime = 0, transformEndTime = 1;
 
     // The world. Shapes inside object definitions are listed too (insideObject set); only
     // instances place them.
@@ -166,10 +177,10 @@ class BasicSceneBuilder : public ParserTarget {
   private:
     // What AttributeBegin saves and AttributeEnd restores.
     struct GraphicsState {
-        class Transform ctm;
-        // Without motion blur only the shutter-open transform exists; transforms given for the
-        // end time alone are dropped (with a warning at the ActiveTransform directive).
-        bool startTransformActive = true;
+        TransformSet ctm;
+        // Which of ctm's two ends the transformation directives change (ActiveTransform): bit
+        // 0 the start, bit 1 the end.
+        int activeTransformBits = kAllTransforms;
         bool reverseOrientation = false;
         int currentMaterialIndex = 0;
         std::string currentMaterialName;
@@ -180,6 +191,7 @@ class BasicSceneBuilder : public ParserTarget {
         ParsedParameterVector shapeAttributes, lightAttributes, materialAttributes,
             mediumAttributes, textureAttributes;
     };
+    static constexpr int kAllTransforms = 3;
     enum class BlockState { OptionsBlock, WorldBlock };
     // An open AttributeBegin ('a') or ObjectBegin ('o') and where it was opened.
     struct OpenBlock {
@@ -189,8 +201,12 @@ class BasicSceneBuilder : public ParserTarget {
 
     void VerifyOptions(const char *directive, const FileLoc &loc);
     void VerifyWorld(const char *directive, const FileLoc &loc);
-    void SetCTM(const class Transform &ctm);
-    void SetActiveTransform(bool start, const FileLoc &loc);
+    // Replaces each active end t of the CTM with f(t).
+    template <typename F>
+    void ForActiveTransforms(F f);
+    // The start of the CTM for what pbrt-v4 does not move (lights, textures, media), with a
+    // warning, once per kind, where the CTM moves.
+    const class Transform &StaticCTM(const char *what, const FileLoc &loc);
     void PopBlock(char kind, const FileLoc &loc);
     bool FirstTime(const std::string &topic);
     void CheckReferences() const;
@@ -200,7 +216,7 @@ class BasicSceneBuilder : public ParserTarget {
     GraphicsState graphicsState;
     std::vector<GraphicsState> pushedGraphicsStates;
     std::vector<OpenBlock> pushStack;
-    std::map<std::string, class Transform> namedCoordinateSystems;
+    std::map<std::string, TransformSet> namedCoordinateSystems;
     std::string activeObject;  // the ObjectBegin being defined, empty outside one
     // Every medium name a MediumInterface directive used, and where: checked at EndOfFiles.
     std::vector<std::pair<std::string, FileLoc>> mediumUses;

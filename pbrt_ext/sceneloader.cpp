@@ -4,6 +4,8 @@
 #include "pbrt_ext/scenedescription.h"
 #include "pbrt_ext/util/error.h"
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <map>
 #include <set>
@@ -111,12 +113,41 @@ struct Resolvers {
     MediumResolver &media;
 };
 
+// The keyframes of a moving shape or instance, at the scene's TransformTimes.
+AnimatedTransform Motion(const SceneDescription &scene, const Transform &start,
+                         const Transform &end, const FileLoc &loc) {
+    try {
+        return AnimatedTransform(start, scene.transformStartTime, end, scene.transformEndTime);
+    } catch (const std::invalid_argument &error) {
+        throw ParseError(loc, error.what());
+    }
+}
+
+// A moving shape (pbrt-v4's AnimatedPrimitive): made in its object space as an object of its
+// own, placed by a moving instance.
+void AddMovingShape(const SceneDescription &scene, const ShapeSceneEntity &shape, int index,
+                    int material, SceneBuilder &builder, TextureResolver &textures) {
+    AnimatedTransform motion = Motion(scene, shape.worldFromObject, shape.worldFromObjectEnd,
+                                      shape.loc);
+    std::string name = fmt::format("<moving shape {}>", index);
+    ShapeSceneEntity still = shape;
+    still.worldFromObject = still.worldFromObjectEnd = Transform();
+    builder.BeginObject(name);
+    AddShape(builder, still, material, {}, textures);
+    builder.EndObject();
+    builder.AddObjectInstance(name, motion);
+}
+
 void AddShapes(const SceneDescription &scene, const std::vector<int> &indices,
                SceneBuilder &builder, Resolvers &r) {
     auto &[materials, textures, media] = r;
     for (int i : indices) {
         const ShapeSceneEntity &shape = scene.shapes[i];
         builder.SetMediumInterface(media.For(shape));
+        if (shape.IsAnimated()) {
+            AddMovingShape(scene, shape, i, materials.For(shape), builder, textures);
+            continue;
+        }
         std::optional<AreaLightDescription> emission;
         if (shape.areaLight)
             emission = CreateAreaLight(*shape.areaLight, textures.Folder());
@@ -136,7 +167,9 @@ void AddInstances(const SceneDescription &scene, SceneBuilder &builder, Resolver
         builder.EndObject();
     }
     for (const InstanceSceneEntity &instance : scene.instances)
-        builder.AddObjectInstance(instance.name, instance.worldFromInstance);
+        builder.AddObjectInstance(instance.name,
+                                  Motion(scene, instance.worldFromInstance.t[0],
+                                         instance.worldFromInstance.t[1], instance.loc));
 }
 
 }  // namespace

@@ -132,7 +132,7 @@ VolPathIntegrator::MediumOutcome VolPathIntegrator::SampleMedium(PathState &path
                 path.r_u *= T_maj * mp.sigma_s / pdf;
                 if (!path.beta || !path.r_u)
                     return false;
-                MediumInteraction mi{p, -ray.d / Length(ray.d), ray.medium, mp.phase};
+                MediumInteraction mi{p, -ray.d / Length(ray.d), ray.medium, mp.phase, ray.time};
                 if (!scene.lights.empty()) {
                     auto scatter = [&](Vector3f wi) {
                         Float ph = mi.phase.p(mi.wo, wi);

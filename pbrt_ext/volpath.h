@@ -26,9 +26,10 @@ struct MediumInteraction {
     Vector3f wo;  // toward where the path came from, unit
     int medium;
     HGPhaseFunction phase;
+    Float time;
 
-    Ray SpawnRay(Vector3f w) const { return Ray(p, w, medium); }
-    Ray SpawnRayTo(Point3f p2) const { return Ray(p, p2 - p, medium); }
+    Ray SpawnRay(Vector3f w) const { return Ray(p, w, medium, time); }
+    Ray SpawnRayTo(Point3f p2) const { return Ray(p, p2 - p, medium, time); }
 };
 
 class VolPathIntegrator {

@@ -71,7 +71,7 @@ TEST(SceneDescription, DefaultsArePbrtV4s) {
     EXPECT_EQ(s.filter.name, "gaussian");
     EXPECT_EQ(s.integrator.name, "volpath");
     EXPECT_EQ(s.accelerator.name, "bvh");
-    EXPECT_TRUE(s.camera.cameraFromWorld.IsIdentity());
+    EXPECT_TRUE(s.camera.cameraFromWorld.t[0].IsIdentity());
     ASSERT_EQ(s.materials.size(), 1u);
     EXPECT_EQ(s.materials[0].name, "diffuse");
     EXPECT_TRUE(s.shapes.empty() && s.lights.empty() && s.instances.empty());
@@ -100,8 +100,8 @@ WorldBegin)");
     EXPECT_EQ(s.accelerator.name, "kdtree");
     EXPECT_EQ(s.integrator.loc.ToString(), "s.pbrt:7:1");
     // cameraFromWorld is the CTM at Camera: the eye maps to the camera-space origin.
-    ExpectNear(s.camera.cameraFromWorld(Point3f(0, 0, -5)), Point3f(0, 0, 0));
-    ExpectNear(s.camera.cameraFromWorld(Point3f(0, 0, 0)), Point3f(0, 0, 5));
+    ExpectNear(s.camera.cameraFromWorld.t[0](Point3f(0, 0, -5)), Point3f(0, 0, 0));
+    ExpectNear(s.camera.cameraFromWorld.t[0](Point3f(0, 0, 0)), Point3f(0, 0, 5));
 }
 
 TEST(SceneDescription, WorldBeginResetsTheCTM) {
@@ -253,7 +253,7 @@ ObjectEnd)");
     ASSERT_EQ(s.instances.size(), 2u);
     EXPECT_EQ(s.instances[0].name, "pair");
     EXPECT_EQ(s.instances[0].loc.ToString(), "s.pbrt:10:1");
-    ExpectNear(s.instances[0].worldFromInstance(Point3f(0, 0, 0)), Point3f(0, 0, 3));
+    ExpectNear(s.instances[0].worldFromInstance.t[0](Point3f(0, 0, 0)), Point3f(0, 0, 3));
     ExpectNear(s.shapes[1].worldFromObject(Point3f(0, 0, 0)), Point3f(1, 0, 0));
 }
 
@@ -391,18 +391,65 @@ TEST(SceneDescription, OnlySrgbColorSpaceIsSupported) {
     EXPECT_EQ(warnings.Count(), 1);
 }
 
-TEST(SceneDescription, EndTimeTransformsAreDroppedWithOneWarning) {
+TEST(SceneDescription, ActiveTransformChoosesWhichEndMoves) {
+    // killeroo-moving's pattern: each end of the CTM follows only the directives given to it.
     WarningCounter warnings;
-    SceneDescription s = Describe(R"(WorldBegin
+    SceneDescription s = Describe(R"(TransformTimes 0.25 0.75
+LookAt 0 0 0  0 0 1  0 1 0
+ActiveTransform EndTime
+Translate 0 0 -1
+ActiveTransform All
+Camera "perspective"
+WorldBegin
 ActiveTransform EndTime
 Translate 5 0 0
 ActiveTransform StartTime
 Translate 0 1 0
 ActiveTransform All
 Translate 0 0 1
-Shape "sphere")");
-    EXPECT_EQ(warnings.Count(), 1);
+Shape "sphere"
+AttributeBegin
+  ActiveTransform StartTime
+AttributeEnd
+Shape "sphere"
+ObjectBegin "still"
+ObjectEnd
+ActiveTransform EndTime
+Translate 1 0 0
+ObjectInstance "still")");
+    EXPECT_EQ(warnings.Count(), 0);
+    EXPECT_EQ(s.transformStartTime, 0.25f);
+    EXPECT_EQ(s.transformEndTime, 0.75f);
+    EXPECT_EQ(s.camera.transformStartTime, 0.25f);
+    ExpectNear(s.camera.cameraFromWorld.t[1](Point3f(0, 0, 0)), Point3f(0, 0, -1));
+    ASSERT_EQ(s.shapes.size(), 2u);
     ExpectNear(s.shapes[0].worldFromObject(Point3f(0, 0, 0)), Point3f(0, 1, 1));
+    ExpectNear(s.shapes[0].worldFromObjectEnd(Point3f(0, 0, 0)), Point3f(5, 0, 1));
+    EXPECT_TRUE(s.shapes[0].IsAnimated());
+    // AttributeEnd restores which end is active along with the rest of the graphics state.
+    EXPECT_TRUE(s.shapes[1].IsAnimated());
+    ExpectNear(s.instances[0].worldFromInstance.t[1](Point3f(0, 0, 0)), Point3f(6, 0, 1));
+    ExpectNear(s.instances[0].worldFromInstance.t[0](Point3f(0, 0, 0)), Point3f(0, 1, 1));
+}
+
+TEST(SceneDescription, WhatDoesNotMoveWarnsOncePerKind) {
+    WarningCounter warnings;
+    SceneDescription s = Describe(R"(WorldBegin
+ActiveTransform EndTime
+Translate 5 0 0
+LightSource "point"
+LightSource "point"
+AreaLightSource "diffuse"
+Shape "sphere"
+ObjectBegin "o"
+Shape "sphere"
+ObjectEnd)");
+    // Lights; the moving emitter; inside the object, the area light and the moving shape.
+    EXPECT_EQ(warnings.Count(), 4);
+    ExpectNear(s.lights[0].worldFromObject(Point3f(0, 0, 0)), Point3f(0, 0, 0));
+    EXPECT_FALSE(s.shapes[0].areaLight.has_value());
+    EXPECT_TRUE(s.shapes[0].IsAnimated());
+    EXPECT_FALSE(s.shapes[1].IsAnimated());
 }
 
 TEST(SceneDescription, AreaLightsInsideObjectsWarnOnce) {
@@ -421,9 +468,10 @@ TEST(SceneDescription, WarningsNameWhatIsIgnoredWhere) {
     EXPECT_EQ(WarningsOf("ColorSpace \"rec2020\"\nWorldBegin"),
               "s.pbrt:1:1: warning: color space \"rec2020\" is not supported; colors are read as "
               "srgb\n");
-    EXPECT_EQ(WarningsOf("WorldBegin\nActiveTransform EndTime"),
-              "s.pbrt:2:1: warning: motion blur is not supported; only the start-time transform "
-              "is used\n");
+    EXPECT_EQ(WarningsOf("WorldBegin\nActiveTransform EndTime\nTranslate 1 0 0\n"
+                         "LightSource \"point\""),
+              "s.pbrt:4:1: warning: lights do not move over the shutter interval (as in pbrt-v4); "
+              "the start transform is used\n");
     EXPECT_EQ(WarningsOf("WorldBegin\nAreaLightSource \"diffuse\"\nObjectBegin \"lamp\"\n"
                          " Shape \"sphere\"\nObjectEnd"),
               "s.pbrt:4:2: warning: area lights are not supported inside ObjectBegin; instances of "
@@ -441,6 +489,9 @@ TEST(SceneDescriptionErrors, ExactMessages) {
         {"WorldBegin\nCamera \"perspective\"",
          "s.pbrt:2:1: error: \"Camera\" is not allowed after WorldBegin; expected it before "
          "WorldBegin"},
+        {"TransformTimes 1 0\nWorldBegin",
+         "s.pbrt:1:1: error: TransformTimes 1 0: expected finite times with the end not before "
+         "the start"},
         {"WorldBegin\nWorldBegin",
          "s.pbrt:2:1: error: \"WorldBegin\" is not allowed after WorldBegin; expected it before "
          "WorldBegin"},

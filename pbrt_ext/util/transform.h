@@ -166,7 +166,9 @@ class Transform {
     // Normals stay perpendicular to transformed tangents under the inverse transpose.
     PBRT_CPU_GPU Normal3f operator()(Normal3f n) const { return ApplyNormal(mInv, n); }
     // The direction is not normalized, so parametric distances along the ray are preserved.
-    PBRT_CPU_GPU Ray operator()(const Ray &r) const { return Ray((*this)(r.o), (*this)(r.d), r.medium); }
+    PBRT_CPU_GPU Ray operator()(const Ray &r) const {
+        return Ray((*this)(r.o), (*this)(r.d), r.medium, r.time);
+    }
     // The box around the eight transformed corners.
     PBRT_CPU_GPU Bounds3f operator()(const Bounds3f &b) const {
         Bounds3f bt;
@@ -178,7 +180,7 @@ class Transform {
     PBRT_CPU_GPU Vector3f ApplyInverse(Vector3f v) const { return ApplyVector(mInv, v); }
     PBRT_CPU_GPU Normal3f ApplyInverse(Normal3f n) const { return ApplyNormal(m, n); }
     PBRT_CPU_GPU Ray ApplyInverse(const Ray &r) const {
-        return Ray(ApplyInverse(r.o), ApplyInverse(r.d), r.medium);
+        return Ray(ApplyInverse(r.o), ApplyInverse(r.d), r.medium, r.time);
     }
 
     // (t1 * t2)(p) = t1(t2(p)).

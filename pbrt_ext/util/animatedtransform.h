@@ -1,0 +1,73 @@
+// Transforms that move during the shutter interval (pbrt-v4's AnimatedTransform, for
+// ActiveTransform/TransformTimes): two keyframes, each split into a translation, a rotation and
+// an upper-triangular scale/shear, interpolated linearly, by slerp and linearly.
+//
+// Where this differs from pbrt-v4, and why: pbrt-v4 splits the linear part by the polar
+// decomposition (rotation times a symmetric stretch), Embree's instance motion blur by rotation
+// times an upper-triangular matrix (its RTCQuaternionDecomposition). The intersections are
+// Embree's, so the interpolation here is Embree's, and shading sees the transform the ray was
+// intersected with. Both agree at the keyframes, and in between for every motion whose stretch is
+// a uniform scale (translations, rotations, uniform scales: the common cases); with non-uniform
+// scale and rotation moving together, the in-between shapes differ slightly.
+#pragma once
+
+#include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/transform.h"
+#include "pbrt_ext/util/vecmath.h"
+
+#include <array>
+#include <string>
+
+namespace pbrt {
+
+// A unit quaternion w + v as a rotation.
+struct Quaternion {
+    Vector3f v = Vector3f(0, 0, 0);
+    Float w = 1;
+};
+
+// M = Translate(translation) * Rotation(rotation) * scale, scale upper triangular (its last
+// column zero): the form Embree interpolates.
+struct TransformDecomposition {
+    Vector3f translation;
+    Quaternion rotation;
+    SquareMatrix<3> scale;
+};
+
+// Splits the affine transform m (its last row 0 0 0 1). A mirroring m keeps a proper rotation and
+// a negative scale.z. Throws std::invalid_argument for a singular or projective m.
+TransformDecomposition Decompose(const Transform &m);
+Transform Compose(const TransformDecomposition &d);
+
+// Shortest-arc spherical interpolation between unit quaternions, t in [0, 1].
+Quaternion Slerp(Float t, Quaternion q0, Quaternion q1);
+
+class AnimatedTransform {
+  public:
+    AnimatedTransform() = default;
+    // The identity when start and end are equal, or the times are: then nothing moves.
+    AnimatedTransform(const Transform &start, Float startTime, const Transform &end,
+                      Float endTime);
+    explicit AnimatedTransform(const Transform &t) : AnimatedTransform(t, 0, t, 1) {}
+
+    bool IsAnimated() const { return actuallyAnimated; }
+    const Transform &Start() const { return startTransform; }
+    const Transform &End() const { return endTransform; }
+    Float StartTime() const { return startTime; }
+    Float EndTime() const { return endTime; }
+    // Where time falls between the keyframes, clamped to [0, 1] as pbrt-v4 clamps.
+    Float Fraction(Float time) const;
+    // The keyframes as Embree takes them.
+    const std::array<TransformDecomposition, 2> &Keyframes() const { return keys; }
+
+    Transform Interpolate(Float time) const;
+    std::string ToString() const;
+
+  private:
+    Transform startTransform, endTransform;
+    Float startTime = 0, endTime = 1;
+    bool actuallyAnimated = false;
+    std::array<TransformDecomposition, 2> keys;
+};
+
+}  // namespace pbrt
