@@ -165,6 +165,23 @@ pstd::optional<QuadricIntersection> FirstKept(const Quadric &shape, const FloatT
     return {};
 }
 
+// Embree intersects flat and normal-oriented curves as chains of straight pieces, 4 per segment
+// by default, which can leave the true curve where it bends more than its width. The pieces
+// for a curve within a tenth of its radius: a cubic's chord error over a piece of 1/N of its
+// parameter is at most max|c''| / (8 N^2), and |c''| <= 6 max|p[i] - 2 p[i+1] + p[i+2]|.
+float FlatCurveTessellation(const CurveMesh &curves) {
+    Float bend = 0, minRadius = Infinity;
+    for (int s = 0; s < curves.NumSegments(); ++s) {
+        const Point3f *p = &curves.cp[4 * s];
+        for (int i = 0; i < 2; ++i)
+            bend = std::max(bend, 6 * Length((p[i] - p[i + 1]) + (p[i + 2] - p[i + 1])));
+        minRadius = std::min(minRadius, std::min(curves.width[2 * s], curves.width[2 * s + 1]) / 2);
+    }
+    if (!(minRadius > 0))
+        return 4;
+    return Clamp(std::ceil(std::sqrt(bend / (8 * 0.1f * minRadius))), 4, 64);
+}
+
 // Spheres, cylinders and disks: one primitive per geometry.
 template <typename Quadric>
 struct QuadricCallbacks {
@@ -252,7 +269,15 @@ struct PatchCallbacks {
     }
 };
 
-enum class GeometryKind : uint8_t { Triangles, BilinearPatches, Sphere, Cylinder, Disk, Instance };
+enum class GeometryKind : uint8_t {
+    Triangles,
+    BilinearPatches,
+    Curves,
+    Sphere,
+    Cylinder,
+    Disk,
+    Instance
+};
 
 template <typename Quadric>
 constexpr GeometryKind kQuadricKind = GeometryKind::Sphere;
@@ -308,6 +333,7 @@ struct EmbreeAggregate::Impl {
     std::tuple<std::deque<Sphere>, std::deque<Cylinder>, std::deque<Disk>> quadrics;
     std::vector<std::shared_ptr<const TriangleMesh>> triangleMeshes;
     std::vector<std::shared_ptr<const BilinearPatchMesh>> patchMeshes;
+    std::vector<std::shared_ptr<const CurveMesh>> curveMeshes;
     std::deque<CallbackData> callbackData;
 
     Impl() {
@@ -407,10 +433,14 @@ struct EmbreeAggregate::Impl {
             {rh.ray.tfar, Point3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z)}, wo);
     }
 
-    SurfaceInteraction Interaction(const GeometryRecord &g, const RTCRayHit &rh,
-                                   Vector3f wo) const {
+    // localRay: the ray in the space of the geometry's scene (an instance's, or the world).
+    SurfaceInteraction Interaction(const GeometryRecord &g, const RTCRayHit &rh, Vector3f wo,
+                                   const Ray &localRay) const {
         const RTCHit &hit = rh.hit;
         switch (g.kind) {
+        case GeometryKind::Curves:
+            return CurveInteraction(*static_cast<const CurveMesh *>(g.shape), int(hit.primID),
+                                    hit.u, localRay, rh.ray.tfar);
         case GeometryKind::Triangles:
             return Triangle::InteractionFromIntersection(
                 static_cast<const TriangleMesh *>(g.shape), int(hit.primID), Barycentrics(hit),
@@ -470,6 +500,49 @@ int EmbreeAggregate::AddBilinearPatchMesh(std::shared_ptr<const BilinearPatchMes
     impl->patchMeshes.push_back(mesh);
     return impl->AddUserGeometry<PatchCallbacks>(GeometryKind::BilinearPatches, mesh.get(),
                                                  unsigned(mesh->NumPatches()), attrs);
+}
+
+int EmbreeAggregate::AddCurves(std::shared_ptr<const CurveMesh> curves,
+                               PrimitiveAttributes attrs) {
+    static constexpr RTCGeometryType kTypes[] = {RTC_GEOMETRY_TYPE_FLAT_BEZIER_CURVE,
+                                                 RTC_GEOMETRY_TYPE_ROUND_BEZIER_CURVE,
+                                                 RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BEZIER_CURVE};
+    RTCGeometry geom = rtcNewGeometry(impl->device, kTypes[int(curves->type)]);
+    int n = curves->NumSegments();
+    // Each segment's own four control points, with radii that make its width linear in u.
+    float *vertices = static_cast<float *>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 4 * size_t(n)));
+    unsigned *index = static_cast<unsigned *>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), size_t(n)));
+    for (int s = 0; s < n; ++s) {
+        index[s] = unsigned(4 * s);
+        for (int i = 0; i < 4; ++i) {
+            Point3f p = curves->cp[4 * s + i];
+            float *v = &vertices[4 * (4 * s + i)];
+            v[0] = p.x;
+            v[1] = p.y;
+            v[2] = p.z;
+            v[3] = Lerp(i / 3.f, curves->width[2 * s], curves->width[2 * s + 1]) / 2;
+        }
+    }
+    if (curves->type == CurveType::Ribbon) {
+        float *normals = static_cast<float *>(rtcSetNewGeometryBuffer(
+            geom, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4 * size_t(n)));
+        for (int s = 0; s < n; ++s)
+            for (int i = 0; i < 4; ++i) {
+                // Evenly spaced on the chord, so that the normal spline is the linear
+                // interpolation of the end normals, whose direction is their nlerp.
+                Vector3f n0(curves->n[2 * s]), n1(curves->n[2 * s + 1]);
+                Vector3f nv = (1 - i / 3.f) * n0 + (i / 3.f) * n1;
+                for (int c = 0; c < 3; ++c)
+                    normals[3 * (4 * s + i) + c] = nv[c];
+            }
+    }
+    rtcSetGeometryTessellationRate(geom, FlatCurveTessellation(*curves));
+    impl->curveMeshes.push_back(curves);
+    attrs.alpha.reset();
+    attrs.areaLightBase = -1;
+    return impl->Attach(geom, {GeometryKind::Curves, curves.get(), attrs});
 }
 
 int EmbreeAggregate::AddSphere(const Sphere &sphere, PrimitiveAttributes attrs) {
@@ -568,11 +641,15 @@ pstd::optional<ShapeIntersection> EmbreeAggregate::Intersect(const Ray &ray, Flo
     }
     const GeometryRecord &g = scene->geometries[rh.hit.geomID];
     Vector3f wo = -Normalize(ray.d);
-    SurfaceInteraction si = impl->Interaction(g, rh, wo);
+    SurfaceInteraction si;
     if (instance) {
         const AnimatedTransform &motion = instance->worldFromInstance;
-        si = TransformInteraction(
-            motion.IsAnimated() ? motion.Interpolate(ray.time) : motion.Start(), si);
+        Transform worldFromInstance =
+            motion.IsAnimated() ? motion.Interpolate(ray.time) : motion.Start();
+        Ray local = g.kind == GeometryKind::Curves ? worldFromInstance.ApplyInverse(ray) : ray;
+        si = TransformInteraction(worldFromInstance, impl->Interaction(g, rh, wo, local));
+    } else {
+        si = impl->Interaction(g, rh, wo, ray);
     }
     si.wo = wo;
     si.time = ray.time;

@@ -15,6 +15,7 @@
 #include "pbrt_ext/base/medium.h"
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/ray.h"
+#include "pbrt_ext/curves.h"
 #include "pbrt_ext/shapes.h"
 #include "pbrt_ext/util/animatedtransform.h"
 #include "pbrt_ext/textures.h"
@@ -63,6 +64,9 @@ class EmbreeAggregate {
     int AddTriangleMesh(std::shared_ptr<const TriangleMesh> mesh, PrimitiveAttributes attrs);
     int AddBilinearPatchMesh(std::shared_ptr<const BilinearPatchMesh> mesh,
                              PrimitiveAttributes attrs);
+    // Curves are Embree's curve primitives (curves.h); their attributes carry no alpha and no
+    // area light.
+    int AddCurves(std::shared_ptr<const CurveMesh> curves, PrimitiveAttributes attrs);
     int AddSphere(const Sphere &sphere, PrimitiveAttributes attrs);
     int AddCylinder(const Cylinder &cylinder, PrimitiveAttributes attrs);
     int AddDisk(const Disk &disk, PrimitiveAttributes attrs);

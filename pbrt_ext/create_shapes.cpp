@@ -2,6 +2,8 @@
 // space once; PLY quads become bilinear patches, as pbrt-v4 makes them.
 #include "pbrt_ext/create.h"
 
+#include "pbrt_ext/curves.h"
+
 #include "pbrt_ext/util/error.h"
 #include "pbrt_ext/util/loopsubdiv.h"
 #include "pbrt_ext/util/ply.h"
@@ -151,6 +153,49 @@ void AddBilinearMesh(SceneBuilder &builder, const ShapeSceneEntity &e,
     builder.AddBilinearPatchMesh(std::move(mesh), a.material, a.emission, a.alpha);
 }
 
+CurveType CurveTypeFrom(const ParameterDictionary &p) {
+    std::string type = p.GetOneString("type", "flat");
+    if (type == "flat")
+        return CurveType::Flat;
+    if (type == "cylinder")
+        return CurveType::Cylinder;
+    if (type == "ribbon")
+        return CurveType::Ribbon;
+    throw ParseError(*p.Loc("type"), "curve \"type\" \"" + type +
+                                         "\" is unknown; expected flat, cylinder or ribbon");
+}
+
+// pbrt-v4's curve, with its parameters; "splitdepth" is read and has no use (Embree refines
+// curves itself). Curves do not emit and have no alpha (pbrt-v4 cannot sample them as lights).
+void AddCurve(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearance &a) {
+    const ParameterDictionary &p = e.parameters;
+    CurveDescription curve;
+    curve.p = p.GetPoint3fArray("P");
+    curve.basis = p.GetOneString("basis", "bezier");
+    curve.degree = p.GetOneInt("degree", 3);
+    curve.type = CurveTypeFrom(p);
+    curve.n = p.GetNormal3fArray("N");
+    Float width = p.GetOneFloat("width", 1);
+    curve.width0 = p.GetOneFloat("width0", width);
+    curve.width1 = p.GetOneFloat("width1", width);
+    p.GetOneInt("splitdepth", 3);
+    p.ReportUnused();
+    if (curve.type != CurveType::Ribbon && !curve.n.empty()) {
+        WarningAt(*p.Loc("N"), "curve normals are only used by \"ribbon\" curves: ignored");
+        curve.n.clear();
+    }
+    if (a.emission)
+        WarningAt(e.loc, "curves do not emit (as in pbrt-v4): the area light is ignored");
+    if (a.alpha)
+        WarningAt(*p.Loc("alpha"), "alpha is not supported on curves: ignored");
+    CheckPrimitives(e, {a.material, {}, {}}, curve.p.size());
+    auto mesh = AtShape(e, [&] {
+        return std::make_shared<CurveMesh>(
+            MakeCurveMesh(e.worldFromObject, e.reverseOrientation, curve));
+    });
+    builder.AddCurves(std::move(mesh), a.material);
+}
+
 // pbrt-v4's loopsubdiv: the control mesh refined `levels` times, as a triangle mesh with the
 // limit surface's normals. Each level has four times the triangles of the last (and about 52
 // bytes each while it is refined), so the size is checked before the first level.
@@ -237,12 +282,10 @@ void AddShape(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
     }
     if (e.name == "loopsubdiv")
         return AddLoopSubdiv(builder, e, a);
-    if (e.name == "curve") {
-        WarningAt(e.loc, "Shape \"%s\" is not supported: skipped", e.name.c_str());
-        return;
-    }
+    if (e.name == "curve")
+        return AddCurve(builder, e, a);
     throw ParseError(e.loc, "unknown Shape \"" + e.name + "\": expected trianglemesh, plymesh, "
-                                "bilinearmesh, loopsubdiv, sphere, disk or cylinder");
+                                "bilinearmesh, loopsubdiv, curve, sphere, disk or cylinder");
 }
 
 }  // namespace pbrt

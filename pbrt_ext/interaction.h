@@ -25,6 +25,7 @@ struct SurfaceInteraction {
         Normal3f dndu, dndv;
     } shading;
     Float time = 0;           // the time of the ray that found it; rays leaving keep it
+    Float errorBound = 0;     // how far p may be from the surface: a curve's width, else 0
     int materialIndex = -1;   // into Scene::materials; -1: no material (an interface)
     int areaLightIndex = -1;  // into Scene::lights; -1: not emissive
     // The media on either side: the shape's where it separates two media, else the ray's on
@@ -37,11 +38,11 @@ struct SurfaceInteraction {
     }
     // A ray leaving the surface in direction w, its origin offset to w's side.
     PBRT_CPU_GPU Ray SpawnRay(Vector3f w) const {
-        return Ray(OffsetRayOrigin(p, n, w), w, GetMedium(w), time);
+        return Ray(OffsetRayOrigin(p, n, w, errorBound), w, GetMedium(w), time);
     }
     // A ray toward the point p2 with d = p2 - o, so that t = 1 reaches it.
     PBRT_CPU_GPU Ray SpawnRayTo(Point3f p2) const {
-        Point3f o = OffsetRayOrigin(p, n, p2 - p);
+        Point3f o = OffsetRayOrigin(p, n, p2 - p, errorBound);
         return Ray(o, p2 - o, GetMedium(p2 - p), time);
     }
 };

@@ -23,10 +23,12 @@ struct Ray {
 // Moves a ray origin off the surface at p along the geometric normal n, to the side w leaves
 // toward, so that the spawned ray does not re-hit its own surface. pbrt-v4 bounds the
 // intersection's rounding error exactly; we use a bound proportional to the magnitude of p,
-// which covers Embree's watertight triangle and our quadric intersection routines.
-PBRT_CPU_GPU inline Point3f OffsetRayOrigin(Point3f p, Normal3f n, Vector3f w) {
+// which covers Embree's watertight triangle and our quadric intersection routines. errorBound:
+// a larger distance p may lie from the surface (a curve's width, as pbrt-v4 bounds it).
+PBRT_CPU_GPU inline Point3f OffsetRayOrigin(Point3f p, Normal3f n, Vector3f w,
+                                            Float errorBound = 0) {
     Float scale = 1 + std::max(std::max(std::abs(p.x), std::abs(p.y)), std::abs(p.z));
-    Vector3f offset = Vector3f(n) * (Float(1e-4) * scale);
+    Vector3f offset = Vector3f(n) * std::max(Float(1e-4) * scale, errorBound);
     if (Dot(w, Vector3f(n)) < 0)
         offset = -offset;
     return p + offset;

@@ -63,6 +63,10 @@ void SceneBuilder::AddBilinearPatchMesh(std::shared_ptr<BilinearPatchMesh> mesh,
     scene->aggregate.AddBilinearPatchMesh(std::move(mesh), attributes);
 }
 
+void SceneBuilder::AddCurves(std::shared_ptr<CurveMesh> curves, int material) {
+    scene->aggregate.AddCurves(std::move(curves), Attributes(material, {}));
+}
+
 template <typename Quadric, typename AddToAggregate>
 void SceneBuilder::AddQuadric(const Quadric &shape, int material,
                               std::optional<AreaLightDescription> emission,

@@ -108,6 +108,8 @@ class SceneBuilder {
     void AddSphere(const Sphere &sphere, int material,
                    std::optional<AreaLightDescription> emission = {},
                    std::optional<FloatTexture> alpha = {});
+    // Curves neither emit nor take alpha (pbrt-v4 cannot sample them as lights either).
+    void AddCurves(std::shared_ptr<CurveMesh> curves, int material);
     void AddCylinder(const Cylinder &cylinder, int material,
                      std::optional<AreaLightDescription> emission = {},
                      std::optional<FloatTexture> alpha = {});

@@ -99,7 +99,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                          "convergence/cornell_panel_light.pbrt",
                                          "media-cornell-fog.pbrt", "media-uniformgrid.pbrt",
                                          "media-rgbgrid.pbrt", "media-cloud.pbrt",
-                                         "media-nanovdb-smoke.pbrt", "media-fabric-fog.pbrt"));
+                                         "media-nanovdb-smoke.pbrt", "media-fabric-fog.pbrt",
+                                         "subdivision.pbrt", "cylinders.pbrt",
+                                         "motion-blur.pbrt", "fabric-woven.pbrt"));
 
 TEST(SceneLoader, UnreferencedTexturesAndMaterialsAreNeverLoaded) {
     // The texture and the named material point at files that do not exist; nothing uses them.
@@ -238,7 +240,7 @@ Shape "sphere"
 Shape "teapot"
 )");
     EXPECT_EQ(LoadError(file2), file2 + ":8:1: error: unknown Shape \"teapot\": expected "
-                                        "trianglemesh, plymesh, bilinearmesh, loopsubdiv, sphere, disk or "
+                                        "trianglemesh, plymesh, bilinearmesh, loopsubdiv, curve, sphere, disk or "
                                         "cylinder");
 }
 
@@ -355,10 +357,14 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
          ":4:5: error: grid medium has 5 \"density\" values; expected nx*ny*nz = 8"},
         // The NanoVDB reader's own message follows the resolved file name.
         {"load_missing_nvdb.pbrt", ":3:49: error: "},
-        // Cylinders without area; subdivision surfaces' control meshes.
+        // Curves the bases cannot use; cylinders without area; subdivision control meshes.
         {"load_loopsubdiv_nonmanifold.pbrt",
          ":3:1: error: loopsubdiv: edge 0-1 is used twice in the same direction (triangles 0 "
          "and 1): the mesh must be a consistently oriented manifold"},
+        {"load_curve_points.pbrt",
+         ":3:1: error: curve: 5 control points; the degree 3 Bézier basis needs 4 + n * 3, n >= 0"},
+        {"load_curve_type.pbrt",
+         ":3:52: error: curve \"type\" \"tube\" is unknown; expected flat, cylinder or ribbon"},
         {"load_cylinder_radius.pbrt",
          ":3:18: error: cylinder \"radius\" is -1; expected a finite value > 0"},
         {"load_cylinder_heights.pbrt",
