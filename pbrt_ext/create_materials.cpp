@@ -102,6 +102,34 @@ void SetShadingPerturbation(const ParameterDictionary &p, TextureResolver &textu
         ImageTextureCache::Get(ResolvePath(textures.Folder(), normalMap), ColorEncoding::Linear()));
 }
 
+// pbrt-v4's precedence: sigma_a, else reflectance, else the melanins (eumelanin 1.3 when none
+// of them is given); what is shadowed is read, and warned about, as pbrt-v4 does.
+HairMaterial CreateHairMaterial(const SceneEntity &e, TextureResolver &textures) {
+    const ParameterDictionary &p = e.parameters;
+    auto optional = [&](const char *name, SpectrumType type) -> std::optional<SpectrumTexture> {
+        if (!p.HasParameter(name))
+            return {};
+        return textures.GetSpectrumTexture(p, name, Spectrum(0.f), type);
+    };
+    HairMaterial m;
+    m.sigma_a = optional("sigma_a", SpectrumType::Unbounded);
+    std::optional<SpectrumTexture> reflectance = optional("reflectance", SpectrumType::Albedo);
+    bool melanin = p.HasParameter("eumelanin") || p.HasParameter("pheomelanin");
+    m.eumelanin = textures.Float(p, "eumelanin", m.sigma_a || reflectance || melanin ? 0 : 1.3f);
+    m.pheomelanin = textures.Float(p, "pheomelanin", 0);
+    if (m.sigma_a && (reflectance || melanin))
+        WarningAt(e.loc, "hair: \"sigma_a\" is given; \"reflectance\" and the melanins are ignored");
+    else if (reflectance && melanin)
+        WarningAt(e.loc, "hair: \"reflectance\" is given; the melanins are ignored");
+    if (!m.sigma_a)
+        m.reflectance = reflectance;
+    m.eta = textures.Float(p, "eta", 1.55f);
+    m.beta_m = textures.Float(p, "beta_m", 0.3f);
+    m.beta_n = textures.Float(p, "beta_n", 0.3f);
+    m.alpha = textures.Float(p, "alpha", 2);
+    return m;
+}
+
 }  // namespace
 
 std::optional<Material> CreateMaterial(const SceneEntity &e, const std::string &type,
@@ -169,7 +197,9 @@ std::optional<Material> CreateMaterial(const SceneEntity &e, const std::string &
     } else if (type == "interface") {
         p.ReportUnused();
         return std::nullopt;
-    } else if (type == "measured" || type == "hair" || type == "subsurface") {
+    } else if (type == "hair") {
+        material = CreateHairMaterial(e, textures);
+    } else if (type == "measured" || type == "subsurface") {
         WarningAt(e.loc, "Material \"%s\" is not supported: rendered as diffuse 0.5",
                   type.c_str());
         return DiffuseMaterial{};

@@ -1,6 +1,7 @@
 #include "pbrt_ext/materials.h"
 
 #include "pbrt_ext/options.h"
+#include "pbrt_ext/util/colorspace.h"
 #include "pbrt_ext/util/hash.h"
 #include "pbrt_ext/util/scattering.h"
 
@@ -107,6 +108,29 @@ BxDF FabricMaterial::GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &
     if (!diffuse)
         return fabric;
     return FabricDiffuseBxDF(fabric, Reflectance(*diffuse, ctx, lambda));
+}
+
+SampledSpectrum HairSigmaAFromConcentration(Float eumelanin, Float pheomelanin,
+                                            const SampledWavelengths &lambda) {
+    RGB eumelaninSigma_a(0.419f, 0.697f, 1.37f), pheomelaninSigma_a(0.187f, 0.4f, 1.05f);
+    RGB sigma_a = eumelanin * eumelaninSigma_a + pheomelanin * pheomelaninSigma_a;
+    return RGBUnboundedSpectrum(RGBColorSpace::sRGB(), sigma_a).Sample(lambda);
+}
+
+BxDF HairMaterial::GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const {
+    Float bm = std::max<Float>(1e-2f, beta_m.Evaluate(ctx));
+    Float bn = std::max<Float>(1e-2f, beta_n.Evaluate(ctx));
+    SampledSpectrum absorption;
+    if (sigma_a)
+        absorption = ClampZero(sigma_a->Evaluate(ctx, lambda));
+    else if (reflectance)
+        absorption = HairBxDF::SigmaAFromReflectance(Reflectance(*reflectance, ctx, lambda), bn);
+    else
+        absorption = HairSigmaAFromConcentration(std::max<Float>(0, eumelanin.Evaluate(ctx)),
+                                                 std::max<Float>(0, pheomelanin.Evaluate(ctx)),
+                                                 lambda);
+    return HairBxDF(-1 + 2 * ctx.uv[1], eta.Evaluate(ctx), absorption, bm, bn,
+                    alpha.Evaluate(ctx));
 }
 
 namespace {

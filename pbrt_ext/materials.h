@@ -101,6 +101,23 @@ struct FabricMaterial {
     BxDF GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const;
 };
 
+// pbrt-v4's hair (HairBxDF, Chiang et al. 2016), across the fiber at h = -1 + 2 v. The
+// absorption inside the fiber comes from sigma_a, else from a reflectance (the colour after
+// multiple scattering), else from melanin concentrations; eumelanin 1.3 (brown) when none is
+// given. The roughnesses are kept at 0.01 or more, as pbrt-v4 keeps them.
+struct HairMaterial {
+    std::optional<SpectrumTexture> sigma_a, reflectance;
+    FloatTexture eumelanin = 0, pheomelanin = 0;
+    FloatTexture eta = 1.55f, beta_m = 0.3f, beta_n = 0.3f, alpha = 2;
+
+    BxDF GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const;
+};
+
+// The absorption coefficient (per unit of the fiber's diameter) that concentrations of
+// eumelanin and pheomelanin give (pbrt-v4's constants, after d'Eon et al. 2011).
+SampledSpectrum HairSigmaAFromConcentration(Float eumelanin, Float pheomelanin,
+                                            const SampledWavelengths &lambda);
+
 // pbrt-v4's stochastic mix of two materials: at each hit one of them is chosen, the second with
 // probability `amount`, by a hash of the hit, so that the choice is the same for a given point and
 // direction. The scene resolves a mix to the chosen material before asking for a BSDF.
@@ -120,7 +137,7 @@ class Material {
     using Variant =
         std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, ThinDielectricMaterial,
                      DiffuseTransmissionMaterial, CoatedDiffuseMaterial, CoatedConductorMaterial,
-                     FabricMaterial, MixMaterial>;
+                     FabricMaterial, HairMaterial, MixMaterial>;
     template <typename T>
     Material(T material) : material(std::move(material)) {}
 

@@ -101,7 +101,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                          "media-rgbgrid.pbrt", "media-cloud.pbrt",
                                          "media-nanovdb-smoke.pbrt", "media-fabric-fog.pbrt",
                                          "subdivision.pbrt", "cylinders.pbrt",
-                                         "motion-blur.pbrt", "fabric-woven.pbrt"));
+                                         "motion-blur.pbrt", "fabric-woven.pbrt",
+                                         "hair-fur.pbrt"));
 
 TEST(SceneLoader, UnreferencedTexturesAndMaterialsAreNeverLoaded) {
     // The texture and the named material point at files that do not exist; nothing uses them.

@@ -8,6 +8,7 @@
 #include "pbrt_ext/bxdfs/diffusetransmission.h"
 #include "pbrt_ext/bxdfs/fabric.h"
 #include "pbrt_ext/bxdfs/fabricdiffuse.h"
+#include "pbrt_ext/bxdfs/hair.h"
 #include "pbrt_ext/bxdfs/layered.h"
 #include "pbrt_ext/bxdfs/thindielectric.h"
 
@@ -21,7 +22,7 @@ class BxDF {
     using Variant =
         std::variant<DiffuseBxDF, ConductorBxDF, DielectricBxDF, ThinDielectricBxDF,
                      DiffuseTransmissionBxDF, CoatedDiffuseBxDF, CoatedConductorBxDF, FabricBxDF,
-                     FabricDiffuseBxDF>;
+                     FabricDiffuseBxDF, HairBxDF>;
 
     template <typename T>
     BxDF(T bxdf) : bxdf(std::move(bxdf)) {}
