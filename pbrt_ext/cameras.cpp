@@ -53,4 +53,9 @@ std::string OrthographicCamera::ToString() const {
     return buf;
 }
 
+std::string SphericalCamera::ToString() const {
+    return std::string("[ SphericalCamera mapping: ") +
+           (mapping == Mapping::EqualArea ? "equalarea" : "equirectangular") + " ]";
+}
+
 }  // namespace pbrt

@@ -1,5 +1,6 @@
-// Cameras: rays from film positions (pbrt-v4's cameras.h, reduced to the perspective and
-// orthographic cameras, without media, ray differentials or importance functions).
+// Cameras: rays from film positions (pbrt-v4's cameras.h, reduced to the perspective,
+// orthographic and spherical cameras, without media, ray differentials or importance
+// functions).
 //
 // Spaces as in pbrt-v4: camera space looks down +z with +y up and +x to the right of the image;
 // screen space is the image plane with the screen window's extent; raster space counts pixels of
@@ -13,6 +14,7 @@
 #include "pbrt_ext/samplers.h"
 #include "pbrt_ext/util/animatedtransform.h"
 #include "pbrt_ext/util/bounds.h"
+#include "pbrt_ext/util/equalarea.h"
 #include "pbrt_ext/util/pstd.h"
 #include "pbrt_ext/util/sampling.h"
 #include "pbrt_ext/util/spectrum.h"
@@ -127,9 +129,42 @@ class OrthographicCamera : public ProjectiveCamera {
     std::string ToString() const;
 };
 
+// Every direction around the camera (pbrt-v4's SphericalCamera): the film position, as a
+// fraction of the resolution, mapped to the sphere by the equal-area octahedral square (each
+// pixel the same solid angle) or the equirectangular map (longitude along x, latitude down y),
+// then camera space's y and z exchanged, so that the image's up is the camera's +y.
+class SphericalCamera {
+  public:
+    enum class Mapping { EqualArea, EquiRectangular };
+    SphericalCamera(CameraMotion worldFromCamera, Point2i fullResolution, Mapping mapping)
+        : worldFromCamera(std::move(worldFromCamera)), fullResolution(fullResolution),
+          mapping(mapping) {}
+
+    static constexpr const char *Name() { return "spherical"; }
+    pstd::optional<CameraRay> GenerateRay(CameraSample sample) const {
+        Point2f uv(sample.pFilm.x / fullResolution.x, sample.pFilm.y / fullResolution.y);
+        Vector3f dir;
+        if (mapping == Mapping::EquiRectangular) {
+            Float theta = Pi * uv[1], phi = 2 * Pi * uv[0];
+            dir = SphericalDirection(std::sin(theta), std::cos(theta), phi);
+        } else {
+            dir = EqualAreaSquareToSphere(WrapEqualAreaSquare(uv));
+        }
+        std::swap(dir.y, dir.z);
+        return CameraRay{worldFromCamera.ToWorld(Ray(Point3f(0, 0, 0), dir), sample.time)};
+    }
+    const Transform &WorldFromCamera() const { return worldFromCamera.Start(); }
+    std::string ToString() const;
+
+  private:
+    CameraMotion worldFromCamera;
+    Point2i fullResolution;
+    Mapping mapping;
+};
+
 // The closed set of cameras.
 class Camera {
-    using Variant = std::variant<PerspectiveCamera, OrthographicCamera>;
+    using Variant = std::variant<PerspectiveCamera, OrthographicCamera, SphericalCamera>;
 
   public:
     template <typename C>

@@ -255,6 +255,25 @@ CameraMotion CameraMotionOf(const CameraSceneEntity &e) {
     }
 }
 
+// pbrt-v4 reads the lens, frame and screen-window parameters of a spherical camera and has no
+// use for them; so they are read here.
+SphericalCamera CreateSphericalCamera(const CameraSceneEntity &e, CameraMotion worldFromCamera,
+                                      const RGBFilm &film) {
+    const ParameterDictionary &p = e.parameters;
+    for (const char *unused : {"lensradius", "focaldistance", "frameaspectratio"})
+        p.GetOneFloat(unused, 0);
+    p.GetFloatArray("screenwindow");
+    std::string mapping = p.GetOneString("mapping", "equalarea");
+    p.ReportUnused();
+    if (mapping != "equalarea" && mapping != "equirectangular")
+        throw ParseError(*p.Loc("mapping"), "spherical camera \"mapping\" \"" + mapping +
+                                                "\" is unknown; expected equalarea or "
+                                                "equirectangular");
+    return SphericalCamera(std::move(worldFromCamera), film.FullResolution(),
+                           mapping == "equalarea" ? SphericalCamera::Mapping::EqualArea
+                                                  : SphericalCamera::Mapping::EquiRectangular);
+}
+
 Camera CreateCamera(const CameraSceneEntity &e, const RGBFilm &film) {
     const ParameterDictionary &p = e.parameters;
     ExposureTime(e);  // the film's imaging ratio uses it, and it is checked there
@@ -267,10 +286,13 @@ Camera CreateCamera(const CameraSceneEntity &e, const RGBFilm &film) {
         return OrthographicCamera(worldFromCamera, film.FullResolution(), window, lensRadius,
                                   focalDistance);
     }
+    if (e.name == "spherical")
+        return CreateSphericalCamera(e, std::move(worldFromCamera), film);
     if (!e.name.empty() && e.name != "perspective") {
-        if (e.name != "realistic" && e.name != "spherical")
+        if (e.name != "realistic")
             throw ParseError(e.loc, "unknown Camera \"" + e.name +
-                                        "\": expected perspective or orthographic");
+                                        "\": expected perspective, orthographic, spherical or "
+                                        "realistic");
         Substitute(e, "Camera", "a perspective camera");
     }
     Float fov = p.GetOneFloat("fov", 90);

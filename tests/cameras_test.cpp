@@ -2,6 +2,8 @@
 // thin-lens focusing, and the camera sample built from sampler and filter.
 #include "pbrt_ext/cameras.h"
 
+#include "chi2.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
@@ -15,7 +17,7 @@ void ExpectDirection(Vector3f d, Vector3f expected, Float tol = 1e-5f) {
 }
 
 CameraRay Generate(const Camera &camera, Point2f pFilm, Point2f pLens = Point2f(0.5f, 0.5f)) {
-    pstd::optional<CameraRay> cr = camera.GenerateRay(CameraSample{pFilm, pLens, 1});
+    pstd::optional<CameraRay> cr = camera.GenerateRay(CameraSample{pFilm, pLens, 0, 1});
     EXPECT_TRUE(cr.has_value());
     EXPECT_EQ(cr->weight, SampledSpectrum(1));
     return *cr;
@@ -117,6 +119,45 @@ TEST(Cameras, CameraSampleStaysInItsPixelForTheBoxFilter) {
         meanX += GetCameraSample(sampler, Point2i(7, 3), tri).pFilm.x / 16;
     }
     EXPECT_NEAR(meanX, 7.5, 0.5);
+}
+
+// The equirectangular map: longitude along x from the camera's -x through +z, latitude down y
+// from the camera's up (+y) to its down.
+TEST(SphericalCamera, EquirectangularDirections) {
+    Point2i res(400, 200);
+    Camera camera = SphericalCamera(Transform(), res, SphericalCamera::Mapping::EquiRectangular);
+    ExpectDirection(Generate(camera, Point2f(200, 100)).ray.d, Vector3f(-1, 0, 0));
+    ExpectDirection(Generate(camera, Point2f(100, 100)).ray.d, Vector3f(0, 0, 1));
+    ExpectDirection(Generate(camera, Point2f(300, 100)).ray.d, Vector3f(0, 0, -1));
+    ExpectDirection(Generate(camera, Point2f(123, 0)).ray.d, Vector3f(0, 1, 0));
+    ExpectDirection(Generate(camera, Point2f(77, 200)).ray.d, Vector3f(0, -1, 0));
+    EXPECT_EQ(Generate(camera, Point2f(10, 10)).ray.o, Point3f(0, 0, 0));
+}
+
+// Uniform film positions give directions with the map's density: uniform over the sphere for
+// the equal-area map, 1 / (2 pi^2 sin theta) for the equirectangular one (chi-square, seeded).
+TEST(SphericalCamera, FilmAreaMapsToSolidAngleAsTheMappingSays) {
+    Point2i res(300, 300);
+    for (auto mapping : {SphericalCamera::Mapping::EqualArea,
+                         SphericalCamera::Mapping::EquiRectangular}) {
+        SphericalCamera camera(Transform(), res, mapping);
+        auto sample = [&](Point2f u, Float) -> pstd::optional<Vector3f> {
+            CameraSample cs;
+            cs.pFilm = Point2f(u.x * res.x, u.y * res.y);
+            return camera.GenerateRay(cs)->ray.d;
+        };
+        auto pdf = [&](Vector3f w) -> Float {
+            if (mapping == SphericalCamera::Mapping::EqualArea)
+                return 1 / (4 * Pi);
+            Float sinTheta = SafeSqrt(1 - Sqr(w.y));  // the polar axis is the camera's y
+            return sinTheta > 0 ? 1 / (2 * Pi * Pi * sinTheta) : 0;
+        };
+        Chi2Options opts;
+        opts.numTests = 2;
+        opts.seed = 61;
+        Chi2Result r = Chi2TestSampler(sample, pdf, opts);
+        EXPECT_TRUE(r.passed) << r.message;
+    }
 }
 
 }  // namespace

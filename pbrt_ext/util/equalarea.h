@@ -75,4 +75,23 @@ PBRT_CPU_GPU inline Point2i WrapEqualAreaSquare(Point2i uv, Point2i resolution) 
     return uv;
 }
 
+// The same for a point of the square's continuous parameterization, [0, 1]^2.
+PBRT_CPU_GPU inline Point2f WrapEqualAreaSquare(Point2f uv) {
+    if (uv[0] < 0) {
+        uv[0] = -uv[0];
+        uv[1] = 1 - uv[1];
+    } else if (uv[0] > 1) {
+        uv[0] = 2 - uv[0];
+        uv[1] = 1 - uv[1];
+    }
+    if (uv[1] < 0) {
+        uv[0] = 1 - uv[0];
+        uv[1] = -uv[1];
+    } else if (uv[1] > 1) {
+        uv[0] = 1 - uv[0];
+        uv[1] = 2 - uv[1];
+    }
+    return uv;
+}
+
 }  // namespace pbrt
