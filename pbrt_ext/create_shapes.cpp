@@ -77,17 +77,14 @@ void AddTriangleMesh(SceneBuilder &builder, const ShapeSceneEntity &e,
         throw ParseError(e.loc, "trianglemesh needs \"point3 P\" and \"integer indices\"");
     std::vector<Normal3f> N = p.GetNormal3fArray("N");
     std::vector<Point2f> uv = p.GetPoint2fArray("uv");
-    if (p.HasParameter("S")) {
-        p.GetVector3fArray("S");
-        WarningAt(*p.Loc("S"), "per-vertex tangents \"S\" are not supported: ignored");
-    }
+    std::vector<Vector3f> S = p.GetVector3fArray("S");
     p.GetIntArray("faceIndices");
     p.ReportUnused();
     CheckPrimitives(e, a, indices.size() / 3);
     auto mesh = AtShape(e, [&] {
         return std::make_shared<TriangleMesh>(MakeTriangleMesh(
             e.worldFromObject, e.reverseOrientation, std::move(indices), std::move(P),
-            std::move(N), std::move(uv)));
+            std::move(N), std::move(uv), std::move(S)));
     });
     builder.AddTriangleMesh(std::move(mesh), a.material, a.emission, a.alpha);
 }

@@ -69,10 +69,17 @@ std::string BilinearPatchMesh::ToString() const {
 
 TriangleMesh MakeTriangleMesh(const Transform &worldFromObject, bool reverseOrientation,
                               std::vector<int> indices, std::vector<Point3f> p,
-                              std::vector<Normal3f> n, std::vector<Point2f> uv) {
-    return MakeMesh<TriangleMesh>("trianglemesh", 3, worldFromObject, reverseOrientation,
-                                  std::move(indices), std::move(p), std::move(n),
-                                  std::move(uv));
+                              std::vector<Normal3f> n, std::vector<Point2f> uv,
+                              std::vector<Vector3f> s) {
+    if (!s.empty() && s.size() != p.size())
+        throw std::runtime_error("trianglemesh: " + std::to_string(s.size()) + " tangents \"S\" for " +
+                                 std::to_string(p.size()) + " vertices");
+    TriangleMesh mesh = MakeMesh<TriangleMesh>("trianglemesh", 3, worldFromObject,
+                                               reverseOrientation, std::move(indices),
+                                               std::move(p), std::move(n), std::move(uv));
+    for (Vector3f &si : s) si = worldFromObject(si);
+    mesh.s = std::move(s);
+    return mesh;
 }
 BilinearPatchMesh MakeBilinearPatchMesh(const Transform &worldFromObject,
                                         bool reverseOrientation, std::vector<int> indices,

@@ -48,14 +48,16 @@ struct ShapeSample {
     Float pdf;
 };
 
-// Triangles in world space. indices holds 3 per triangle; n and uv are empty or hold one entry per
-// vertex. n is in world space and already negated when reverseOrientation is set (as pbrt-v4's
-// TriangleMesh stores it); MakeTriangleMesh does both.
+// Triangles in world space. indices holds 3 per triangle; n, uv and s are empty or hold one entry
+// per vertex. n is in world space and already negated when reverseOrientation is set (as pbrt-v4's
+// TriangleMesh stores it); MakeTriangleMesh does both. s: per-vertex shading tangents (pbrt-v4's
+// "S"), which the shading frame's dp/du follows instead of the uv mapping's.
 struct TriangleMesh {
     std::vector<Point3f> p;
     std::vector<int> indices;
     std::vector<Normal3f> n;
     std::vector<Point2f> uv;
+    std::vector<Vector3f> s;
     bool reverseOrientation = false, transformSwapsHandedness = false;
 
     int NumTriangles() const { return int(indices.size() / 3); }
@@ -80,7 +82,8 @@ struct BilinearPatchMesh {
 // not a multiple of 3 (4), or n/uv sizes that differ from the vertex count.
 TriangleMesh MakeTriangleMesh(const Transform &worldFromObject, bool reverseOrientation,
                               std::vector<int> indices, std::vector<Point3f> p,
-                              std::vector<Normal3f> n = {}, std::vector<Point2f> uv = {});
+                              std::vector<Normal3f> n = {}, std::vector<Point2f> uv = {},
+                              std::vector<Vector3f> s = {});
 BilinearPatchMesh MakeBilinearPatchMesh(const Transform &worldFromObject, bool reverseOrientation,
                                         std::vector<int> indices, std::vector<Point3f> p,
                                         std::vector<Normal3f> n = {}, std::vector<Point2f> uv = {});

@@ -170,17 +170,26 @@ SurfaceInteraction Triangle::InteractionFromIntersection(const TriangleMesh *mes
     if (flip)
         si.n = si.shading.n = -si.n;
 
-    if (!mesh->n.empty()) {
-        Normal3f ns = Interpolate(b, mesh->n[v[0]], mesh->n[v[1]], mesh->n[v[2]]);
-        ns = LengthSquared(ns) > 0 ? Normalize(ns) : si.n;
+    if (!mesh->n.empty() || !mesh->s.empty()) {
+        Normal3f ns = si.n;
+        if (!mesh->n.empty()) {
+            ns = Interpolate(b, mesh->n[v[0]], mesh->n[v[1]], mesh->n[v[2]]);
+            ns = LengthSquared(ns) > 0 ? Normalize(ns) : si.n;
+        }
         Vector3f ss = si.dpdu;
+        if (!mesh->s.empty()) {
+            ss = Interpolate(b, mesh->s[v[0]], mesh->s[v[1]], mesh->s[v[2]]);
+            if (LengthSquared(ss) == 0)
+                ss = si.dpdu;
+        }
         Vector3f ts = Cross(ns, ss);
         if (LengthSquared(ts) > 0)
             ss = Cross(ts, ns);
         else
             CoordinateSystem(ns, &ss, &ts);
         SetShadingGeometry(&si, ns, ss, ts);
-        NormalDerivatives(mesh, v, duv02, duv12, degenerateUV, &si);
+        if (!mesh->n.empty())
+            NormalDerivatives(mesh, v, duv02, duv12, degenerateUV, &si);
     }
     return si;
 }

@@ -342,6 +342,34 @@ TEST(Triangle, ShadingNormalsAreAuthoritative) {
     ExpectNear(si->intr.shading.n, tilted, 1e-3f);
 }
 
+// Per-vertex tangents (pbrt-v4's "S") turn the shading frame's dp/du, which carries a fabric's
+// thread, away from the uv mapping's: here 45 degrees, interpolated, with or without normals,
+// kept in the shading normal's plane; transformed with the mesh.
+TEST(Triangle, PerVertexTangentsSetTheShadingDpdu) {
+    Vector3f diagonal = Normalize(Vector3f(1, 1, 0.4f));
+    std::vector<Vector3f> s(3, diagonal);
+    for (bool withNormals : {false, true}) {
+        std::vector<Normal3f> n;
+        if (withNormals)
+            n = {Normal3f(0, 0, 1), Normal3f(0, 0, 1), Normal3f(0, 0, 1)};
+        auto mesh = std::make_shared<TriangleMesh>(MakeTriangleMesh(
+            RotateZ(90), false, {0, 1, 2}, {Point3f(0, 0, 0), Point3f(1, 0, 0), Point3f(0, 1, 0)},
+            n, {}, s));
+        pstd::optional<ShapeIntersection> si =
+            Triangle(mesh.get(), 0).Intersect(Ray(Point3f(-0.2f, 0.2f, 1), Vector3f(0, 0, -1)));
+        ASSERT_TRUE(si);
+        ExpectConsistentFrame(si->intr);
+        // RotateZ(90) maps (1, 1) to (-1, 1); the z part is projected out.
+        ExpectNear(Normalize(si->intr.shading.dpdu), Normalize(Vector3f(-1, 1, 0)), 1e-4f);
+        // The geometric dp/du still follows uv (rotated: +y).
+        ExpectNear(Normalize(si->intr.dpdu), Vector3f(0, 1, 0), 1e-4f);
+    }
+    EXPECT_THROW(MakeTriangleMesh(Transform(), false, {0, 1, 2},
+                                  {Point3f(0, 0, 0), Point3f(1, 0, 0), Point3f(0, 1, 0)}, {}, {},
+                                  {diagonal}),
+                 std::runtime_error);
+}
+
 // With uv (0,0), (1,0), (0,1) the interpolated normal is n0 + u (n1 - n0) + v (n2 - n0): its
 // derivatives are the normals' differences (pbrt-v4's dndu, dndv, unnormalized as there).
 TEST(Triangle, NormalDerivativesFollowTheVertexNormals) {
