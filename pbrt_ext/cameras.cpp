@@ -58,4 +58,79 @@ std::string SphericalCamera::ToString() const {
            (mapping == Mapping::EqualArea ? "equalarea" : "equirectangular") + " ]";
 }
 
+pstd::optional<CameraRayDifferential> Camera::GenerateRayDifferential(CameraSample sample) const {
+    pstd::optional<CameraRay> cr = GenerateRay(sample);
+    if (!cr)
+        return {};
+    RayDifferential rd(cr->ray);
+    auto neighbour = [&](int axis, Point3f *origin, Vector3f *direction) {
+        for (Float eps : {.05f, -.05f}) {
+            CameraSample shifted = sample;
+            shifted.pFilm[axis] += eps;
+            if (pstd::optional<CameraRay> r = GenerateRay(shifted)) {
+                *origin = rd.o + (r->ray.o - rd.o) / eps;
+                *direction = rd.d + (r->ray.d - rd.d) / eps;
+                return true;
+            }
+        }
+        return false;
+    };
+    bool x = neighbour(0, &rd.rxOrigin, &rd.rxDirection);
+    bool y = neighbour(1, &rd.ryOrigin, &rd.ryDirection);
+    rd.hasDifferentials = x && y;
+    return CameraRayDifferential{rd, cr->weight};
+}
+
+CameraDifferentials::CameraDifferentials(const Camera &camera, Point2i fullResolution) {
+    Vector3f inf(Infinity, Infinity, Infinity);
+    minPosDifferentialX = minPosDifferentialY = minDirDifferentialX = minDirDifferentialY = inf;
+    CameraSample sample;
+    sample.pLens = Point2f(0.5f, 0.5f);
+    sample.time = 0.5f;
+    constexpr int n = 512;  // along the film's diagonal, as pbrt-v4
+    for (int i = 0; i < n; ++i) {
+        sample.pFilm = Point2f(Float(i) / (n - 1) * fullResolution.x,
+                               Float(i) / (n - 1) * fullResolution.y);
+        pstd::optional<CameraRayDifferential> crd = camera.GenerateRayDifferential(sample);
+        if (!crd)
+            continue;
+        const RayDifferential &ray = crd->ray;
+        Transform cameraFromWorld = Inverse(camera.WorldFromCamera(ray.time));
+        auto keepShorter = [](Vector3f v, Vector3f *min) {
+            if (Length(v) < Length(*min))
+                *min = v;
+        };
+        keepShorter(cameraFromWorld(ray.rxOrigin - ray.o), &minPosDifferentialX);
+        keepShorter(cameraFromWorld(ray.ryOrigin - ray.o), &minPosDifferentialY);
+        Frame f = Frame::FromZ(Normalize(ray.d));
+        Vector3f df = f.ToLocal(Normalize(ray.d));
+        keepShorter(Normalize(f.ToLocal(Normalize(ray.rxDirection))) - df, &minDirDifferentialX);
+        keepShorter(Normalize(f.ToLocal(Normalize(ray.ryDirection))) - df, &minDirDifferentialY);
+    }
+}
+
+// The point and normal turned so that the camera looks at p straight down +z; the two
+// approximate neighbour rays from the camera meet the tangent plane there, and their offsets
+// from p, turned back, are dp/dx and dp/dy.
+void CameraDifferentials::Approximate_dp_dxy(const Camera &camera, Point3f p, Normal3f n,
+                                             Float time, int samplesPerPixel, Vector3f *dpdx,
+                                             Vector3f *dpdy) const {
+    Transform worldFromCamera = camera.WorldFromCamera(time);
+    Point3f pCamera = worldFromCamera.ApplyInverse(p);
+    Transform downZFromCamera = RotateFromTo(Normalize(Vector3f(pCamera)), Vector3f(0, 0, 1));
+    Point3f pDownZ = downZFromCamera(pCamera);
+    Normal3f nDownZ = downZFromCamera(worldFromCamera.ApplyInverse(n));
+    Float d = nDownZ.z * pDownZ.z;
+    auto meet = [&](Vector3f posDifferential, Vector3f dirDifferential) {
+        Ray r(Point3f(0, 0, 0) + posDifferential, Vector3f(0, 0, 1) + dirDifferential);
+        Float t = -(Dot(nDownZ, Vector3f(r.o)) - d) / Dot(nDownZ, r.d);
+        return r(t);
+    };
+    Point3f px = meet(minPosDifferentialX, minDirDifferentialX);
+    Point3f py = meet(minPosDifferentialY, minDirDifferentialY);
+    Float scale = RayDifferentialScale(samplesPerPixel);
+    *dpdx = scale * worldFromCamera(downZFromCamera.ApplyInverse(px - pDownZ));
+    *dpdy = scale * worldFromCamera(downZFromCamera.ApplyInverse(py - pDownZ));
+}
+
 }  // namespace pbrt

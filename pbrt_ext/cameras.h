@@ -1,6 +1,5 @@
-// Cameras: rays from film positions (pbrt-v4's cameras.h, reduced to the perspective,
-// orthographic and spherical cameras, without media, ray differentials or importance
-// functions).
+// Cameras: rays and ray differentials from film positions (pbrt-v4's cameras.h, reduced to the
+// perspective, orthographic and spherical cameras, without importance functions).
 //
 // Spaces as in pbrt-v4: camera space looks down +z with +y up and +x to the right of the image;
 // screen space is the image plane with the screen window's extent; raster space counts pixels of
@@ -52,8 +51,12 @@ class CameraMotion {
             return worldFromCamera.Start()(r);
         return worldFromCamera.Interpolate(r.time)(r);
     }
-    // At the shutter's opening.
+    // At the shutter's opening, and at a ray's time.
     const Transform &Start() const { return worldFromCamera.Start(); }
+    Transform At(Float time) const {
+        return worldFromCamera.IsAnimated() ? worldFromCamera.Interpolate(time)
+                                            : worldFromCamera.Start();
+    }
     bool IsAnimated() const { return worldFromCamera.IsAnimated(); }
 
   private:
@@ -66,6 +69,11 @@ struct CameraRay {
     SampledSpectrum weight = SampledSpectrum(1);
 };
 
+struct CameraRayDifferential {
+    RayDifferential ray;
+    SampledSpectrum weight = SampledSpectrum(1);
+};
+
 // pbrt-v4's default screen window: [-1, 1] along the shorter image axis and the aspect ratio's
 // extent along the longer, so that a perspective fov spans the shorter axis.
 Bounds2f DefaultScreenWindow(Point2i fullResolution);
@@ -75,6 +83,7 @@ Bounds2f DefaultScreenWindow(Point2i fullResolution);
 class ProjectiveCamera {
   public:
     const Transform &WorldFromCamera() const { return worldFromCamera.Start(); }
+    const CameraMotion &Motion() const { return worldFromCamera; }
 
   protected:
     ProjectiveCamera(CameraMotion worldFromCamera, Point2i fullResolution,
@@ -154,6 +163,7 @@ class SphericalCamera {
         return CameraRay{worldFromCamera.ToWorld(Ray(Point3f(0, 0, 0), dir), sample.time)};
     }
     const Transform &WorldFromCamera() const { return worldFromCamera.Start(); }
+    const CameraMotion &Motion() const { return worldFromCamera; }
     std::string ToString() const;
 
   private:
@@ -174,6 +184,12 @@ class Camera {
     pstd::optional<CameraRay> GenerateRay(CameraSample sample) const {
         return std::visit([&](const auto &c) { return c.GenerateRay(sample); }, camera);
     }
+    // pbrt-v4's CameraBase::GenerateRayDifferential: the neighbours are the rays a twentieth of
+    // a pixel over (or back, where that has none), extrapolated to a whole pixel.
+    pstd::optional<CameraRayDifferential> GenerateRayDifferential(CameraSample sample) const;
+    Transform WorldFromCamera(Float time) const {
+        return std::visit([&](const auto &c) { return c.Motion().At(time); }, camera);
+    }
     const Transform &WorldFromCamera() const {
         return std::visit([](const auto &c) -> const Transform & { return c.WorldFromCamera(); }, camera);
     }
@@ -187,6 +203,26 @@ class Camera {
   private:
     Variant camera;
 };
+
+// The smallest of the camera's ray differentials over its film, in camera space (pbrt-v4's
+// CameraBase::FindMinimumDifferentials), which stand in for the differentials of rays that
+// have none: Approximate_dp_dxy gives the footprint of a pixel at a point p of a surface with
+// normal n as the film sees it, for rays from anywhere.
+struct CameraDifferentials {
+    CameraDifferentials() = default;
+    CameraDifferentials(const Camera &camera, Point2i fullResolution);
+
+    void Approximate_dp_dxy(const Camera &camera, Point3f p, Normal3f n, Float time,
+                            int samplesPerPixel, Vector3f *dpdx, Vector3f *dpdy) const;
+
+    Vector3f minPosDifferentialX, minPosDifferentialY, minDirDifferentialX, minDirDifferentialY;
+};
+
+// pbrt-v4's scale of a camera ray's differentials with the sample count: 1 / sqrt(spp), so
+// that textures are filtered over the area each sample stands for, but at least 1/8.
+inline Float RayDifferentialScale(int samplesPerPixel) {
+    return std::max<Float>(0.125f, 1 / std::sqrt(Float(samplesPerPixel)));
+}
 
 // The camera sample for pixel pPixel (pbrt-v4's GetCameraSample): the film position is offset
 // from the pixel center by a point drawn from the filter, whose weight the film applies; then

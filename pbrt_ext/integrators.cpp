@@ -41,7 +41,7 @@ Float PathIntegrator::BSDFHitWeight(bool lightSamplingApplied, BSDFDensity &pdfB
     return 0;
 }
 
-SampledSpectrum PathIntegrator::Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler,
+SampledSpectrum PathIntegrator::Li(RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler,
                                    RayCounts &rays) const {
     SampledSpectrum L(0.f), beta(1.f);
     // Whether next-event estimation covered the vertex the ray leaves from; false at the camera and
@@ -78,6 +78,7 @@ SampledSpectrum PathIntegrator::Li(Ray ray, SampledWavelengths &lambda, Sampler 
                 L += beta * Le * BSDFHitWeight(lightSampled, pdfBSDF, pdfLight);
             }
         }
+        scene.ComputeDifferentials(si, ray);
         std::optional<BSDF> maybeBSDF = scene.GetBSDF(si, lambda);
         if (!maybeBSDF) {
             // An interface between media, which this integrator ignores (as pbrt-v4's path
@@ -115,7 +116,7 @@ SampledSpectrum PathIntegrator::Li(Ray ray, SampledWavelengths &lambda, Sampler 
         if (bs->IsTransmission())
             etaScale *= Sqr(bs->eta);
         prevCtx = LightSampleContext(si);
-        ray = si.SpawnRay(bs->wi);
+        ray = si.SpawnRay(ray, bs->wi, bs->flags, bs->eta);
 
         // Russian roulette on the throughput without the radiance scaling of refraction.
         SampledSpectrum rrBeta = beta * etaScale;

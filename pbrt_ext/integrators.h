@@ -52,7 +52,9 @@ class PathIntegrator {
 
     // Radiance arriving along ray (from its origin's point of view) at the wavelengths lambda,
     // whose secondary wavelengths a dispersive surface may terminate.
-    SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays) const;
+    // ray: a camera ray with its differentials (a plain ray converts to one without).
+    SampledSpectrum Li(RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler,
+                       RayCounts &rays) const;
 
   private:
     // The BSDF density of the direction a path was sampled in, for the MIS weight of an emitter

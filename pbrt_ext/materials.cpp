@@ -142,10 +142,15 @@ struct ShadingFrame {
 
 // pbrt-v4's BumpMap: the surface displaced along the shading normal by d(u, v), differentiated by
 // forward differences, plus d times the turning of the normal itself (dn/du, dn/dv: large where a
-// big displacement meets curved shading normals). Without ray differentials the step is
-// pbrt-v4's fallback of 0.0005 in (u, v).
+// big displacement meets curved shading normals). The step is half the pixel's footprint in u
+// and in v (from the ray differentials), or pbrt-v4's fallback of 0.0005 where it is zero.
 ShadingFrame BumpMap(const FloatTexture &displacement, const SurfaceInteraction &si) {
-    constexpr Float du = 0.0005f, dv = 0.0005f;
+    Float du = .5f * (std::abs(si.dudx) + std::abs(si.dudy));
+    Float dv = .5f * (std::abs(si.dvdx) + std::abs(si.dvdy));
+    if (du == 0)
+        du = .0005f;
+    if (dv == 0)
+        dv = .0005f;
     TextureEvalContext ctx(si);
     Float d = displacement.Evaluate(ctx);
     TextureEvalContext shifted = ctx;

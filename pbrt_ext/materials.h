@@ -150,6 +150,8 @@ class Material {
     // pbrt-v4's "texture displacement" (bump mapping) and "string normalmap" (a tangent-space
     // normal map read with linear encoding). Either perturbs the shading frame of every BSDF.
     void SetDisplacement(FloatTexture displacement) { this->displacement = std::move(displacement); }
+    // Whether GetBSDF reads the hit's ray differentials (pbrt-v4's bump map steps by them).
+    bool UsesRayDifferentials() const { return displacement.has_value(); }
     void SetNormalMap(std::shared_ptr<const Image> image) { normalMap = std::move(image); }
 
   private:

@@ -1,5 +1,4 @@
-// Rays and their safe spawning from surfaces (pbrt-v4's src/pbrt/ray.h, reduced: no
-// differentials).
+// Rays, ray differentials and safe spawning from surfaces (pbrt-v4's src/pbrt/ray.h).
 #pragma once
 
 #include "pbrt_ext/pbrt.h"
@@ -18,6 +17,30 @@ struct Ray {
     Vector3f d;
     int medium = -1;  // the medium the origin lies in: an index into Scene::media, -1 vacuum
     Float time = 0;   // within the camera's shutter interval: where moving shapes are
+};
+
+// A camera ray with its neighbours one pixel over in x and in y (pbrt-v4's RayDifferential),
+// for the footprint of a hit on the film. A ray spawned from a surface has none
+// (hasDifferentials false): its hits use the camera's approximation.
+struct RayDifferential : Ray {
+    RayDifferential() = default;
+    PBRT_CPU_GPU RayDifferential(const Ray &ray) : Ray(ray) {}  // without differentials
+    PBRT_CPU_GPU RayDifferential &operator=(const Ray &ray) {
+        Ray::operator=(ray);
+        hasDifferentials = false;
+        return *this;
+    }
+    // The neighbours s pixels away instead of one (pbrt-v4: 1 / sqrt(spp), at least 1/8).
+    PBRT_CPU_GPU void ScaleDifferentials(Float s) {
+        rxOrigin = o + (rxOrigin - o) * s;
+        ryOrigin = o + (ryOrigin - o) * s;
+        rxDirection = d + (rxDirection - d) * s;
+        ryDirection = d + (ryDirection - d) * s;
+    }
+
+    bool hasDifferentials = false;
+    Point3f rxOrigin, ryOrigin;
+    Vector3f rxDirection, ryDirection;
 };
 
 // Moves a ray origin off the surface at p along the geometric normal n, to the side w leaves

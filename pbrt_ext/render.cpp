@@ -54,6 +54,21 @@ bool Cancelled(const RenderOptions &options) {
     return options.cancel && options.cancel->load(std::memory_order_relaxed);
 }
 
+// The camera ray, with its differentials only where some material uses them (bump maps):
+// a scene without that pays nothing for them.
+pstd::optional<CameraRayDifferential> CameraRayFor(const Scene &scene, const CameraSample &cs) {
+    if (!scene.usesRayDifferentials) {
+        pstd::optional<CameraRay> cr = scene.camera.GenerateRay(cs);
+        if (!cr)
+            return {};
+        return CameraRayDifferential{RayDifferential(cr->ray), cr->weight};
+    }
+    pstd::optional<CameraRayDifferential> cr = scene.camera.GenerateRayDifferential(cs);
+    if (cr)
+        cr->ray.ScaleDifferentials(RayDifferentialScale(scene.sampler.SamplesPerPixel()));
+    return cr;
+}
+
 // Twice the last wave, up to kMaxWaveSize. Under a time limit, also no more samples than the
 // remaining time is predicted to fit at the speed so far (at least one), so that a doubled wave
 // does not overrun the limit.
@@ -81,7 +96,7 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
             // pbrt-v4's order: the wavelengths take the first dimension, then the camera sample.
             SampledWavelengths lambda = scene.film.SampleWavelengths(sampler.Get1D());
             CameraSample cs = GetCameraSample(sampler, p, scene.film.GetFilter());
-            pstd::optional<CameraRay> cr = scene.camera.GenerateRay(cs);
+            pstd::optional<CameraRayDifferential> cr = CameraRayFor(scene, cs);
             SampledSpectrum L(0.f);
             if (cr) {
                 cr->ray.medium = scene.cameraMedium;

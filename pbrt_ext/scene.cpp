@@ -8,7 +8,7 @@ namespace pbrt {
 
 SceneBuilder::SceneBuilder(Camera camera, RGBFilm film, Sampler sampler)
     : scene(new Scene{EmbreeAggregate(), {}, {}, {}, LightSampler(UniformLightSampler({})),
-                      std::move(camera), std::move(film), std::move(sampler), {}, {}, -1}) {}
+                      std::move(camera), {}, false, std::move(film), std::move(sampler), {}, {}, -1}) {}
 
 int SceneBuilder::AddMaterial(Material material) {
     scene->materials.push_back(std::move(material));
@@ -168,6 +168,11 @@ void SceneBuilder::SetLightSampler(std::string name) {
 
 std::unique_ptr<Scene> SceneBuilder::Build() {
     scene->aggregate.Commit();
+    for (const Material &m : scene->materials)
+        scene->usesRayDifferentials |= m.UsesRayDifferentials();
+    if (scene->usesRayDifferentials)
+        scene->cameraDifferentials =
+            CameraDifferentials(scene->camera, scene->film.FullResolution());
     Bounds3f bounds = scene->aggregate.WorldBound();
     for (size_t i = 0; i < scene->lights.size(); ++i) {
         Light &light = scene->lights[i];

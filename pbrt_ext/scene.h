@@ -53,6 +53,16 @@ class Scene {
     bool IntersectP(const Ray &ray, Float tMax = Infinity) const {
         return aggregate.IntersectP(ray, tMax);
     }
+    // The footprint of a pixel at the hit (pbrt-v4's SurfaceInteraction::ComputeDifferentials):
+    // from the ray's differentials, or, for a ray that has none, the camera's approximation.
+    void ComputeDifferentials(SurfaceInteraction &si, const RayDifferential &ray) const {
+        if (!usesRayDifferentials || si.DifferentialsFrom(ray))
+            return;
+        Vector3f dpdx, dpdy;
+        cameraDifferentials.Approximate_dp_dxy(camera, si.p, si.n, si.time,
+                                               sampler.SamplesPerPixel(), &dpdx, &dpdy);
+        si.SetDifferentials(dpdx, dpdy);
+    }
     // The BSDF at a hit, mixes resolved; none for an interface (a surface that only bounds media).
     std::optional<BSDF> GetBSDF(const SurfaceInteraction &si, SampledWavelengths &lambda) const {
         int index = si.materialIndex;
@@ -70,6 +80,10 @@ class Scene {
     std::vector<int> infiniteLights;  // indices into lights: the ones escaping rays look up
     LightSampler lightSampler;
     Camera camera;
+    CameraDifferentials cameraDifferentials;
+    // Whether some material reads a hit's footprint (a bump map): only then are the camera's
+    // ray differentials generated and every hit's footprint computed.
+    bool usesRayDifferentials = false;
     RGBFilm film;
     Sampler sampler;
     PathIntegratorOptions integratorOptions;

@@ -27,10 +27,14 @@ namespace pbrt {
 // What a texture may read at a shading point.
 struct TextureEvalContext {
     TextureEvalContext() = default;
-    explicit TextureEvalContext(const SurfaceInteraction &si) : p(si.p), n(si.n), uv(si.uv) {}
+    explicit TextureEvalContext(const SurfaceInteraction &si)
+        : p(si.p), dpdx(si.dpdx), dpdy(si.dpdy), n(si.n), uv(si.uv), dudx(si.dudx),
+          dudy(si.dudy), dvdx(si.dvdx), dvdy(si.dvdy) {}
     Point3f p;
+    Vector3f dpdx, dpdy;  // the pixel's footprint (ray differentials), zero where unknown
     Normal3f n;
     Point2f uv;
+    Float dudx = 0, dudy = 0, dvdx = 0, dvdy = 0;
 };
 
 // pbrt-v4's UVMapping: (s, t) = (su u + du, sv v + dv).

@@ -7,7 +7,7 @@
 
 namespace pbrt {
 
-SampledSpectrum VolPathIntegrator::Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler,
+SampledSpectrum VolPathIntegrator::Li(RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler,
                                       RayCounts &rays) const {
     PathState path;
     path.ray = ray;
@@ -33,6 +33,7 @@ SampledSpectrum VolPathIntegrator::Li(Ray ray, SampledWavelengths &lambda, Sampl
                        scene.lights[si.areaLightIndex].L(si.p, si.n, si.uv, -path.ray.d, lambda),
                        si.areaLightIndex);
 
+        scene.ComputeDifferentials(si, path.ray);
         std::optional<BSDF> maybeBSDF = scene.GetBSDF(si, lambda);
         if (!maybeBSDF) {
             // A boundary between media with no surface: continue into the next medium.
@@ -67,7 +68,7 @@ SampledSpectrum VolPathIntegrator::Li(Ray ray, SampledWavelengths &lambda, Sampl
         path.anyNonSpecularBounces |= !bs->IsSpecular();
         if (bs->IsTransmission())
             path.etaScale *= Sqr(bs->eta);
-        path.ray = si.SpawnRay(bs->wi);
+        path.ray = si.SpawnRay(path.ray, bs->wi, bs->flags, bs->eta);
 
         // Russian roulette on the throughput over its probability, without refraction's
         // radiance scaling.

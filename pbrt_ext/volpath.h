@@ -38,12 +38,13 @@ class VolPathIntegrator {
     VolPathIntegrator(const Scene &scene, PathIntegratorOptions options)
         : scene(scene), options(options) {}
 
-    SampledSpectrum Li(Ray ray, SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays) const;
+    SampledSpectrum Li(RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler,
+                       RayCounts &rays) const;
 
   private:
     // What a path carries from vertex to vertex.
     struct PathState {
-        Ray ray;
+        RayDifferential ray;
         SampledSpectrum L{0.f}, beta{1.f}, r_u{1.f}, r_l{1.f};
         int depth = 0;
         bool specularBounce = false, anyNonSpecularBounces = false;

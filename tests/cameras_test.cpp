@@ -1,6 +1,7 @@
 // Cameras: pbrt-v4's raster/screen/camera conventions (fov on the shorter axis, raster y down),
 // thin-lens focusing, and the camera sample built from sampler and filter.
 #include "pbrt_ext/cameras.h"
+#include "pbrt_ext/interaction.h"
 
 #include "chi2.h"
 
@@ -158,6 +159,93 @@ TEST(SphericalCamera, FilmAreaMapsToSolidAngleAsTheMappingSays) {
         Chi2Result r = Chi2TestSampler(sample, pdf, opts);
         EXPECT_TRUE(r.passed) << r.message;
     }
+}
+
+// A camera ray's differentials are its neighbours one pixel over (pbrt-v4's finite difference
+// over a twentieth of a pixel, extrapolated): for a pinhole they start where the ray does and
+// point where the rays through the next pixels do, for every camera.
+TEST(RayDifferentials, CameraRaysCarryTheirNeighbours) {
+    Point2i res(64, 48);
+    Transform worldFromCamera = Translate(Vector3f(1, 2, 3)) * RotateY(30);
+    std::vector<Camera> cameras = {
+        PerspectiveCamera(worldFromCamera, res, DefaultScreenWindow(res), 50),
+        OrthographicCamera(worldFromCamera, res, DefaultScreenWindow(res)),
+        SphericalCamera(worldFromCamera, res, SphericalCamera::Mapping::EquiRectangular)};
+    for (const Camera &camera : cameras) {
+        Point2f pFilm(20.3f, 30.6f);
+        CameraSample cs;
+        cs.pFilm = pFilm;
+        pstd::optional<CameraRayDifferential> crd = camera.GenerateRayDifferential(cs);
+        ASSERT_TRUE(crd && crd->ray.hasDifferentials) << camera.Name();
+        CameraRay x = Generate(camera, pFilm + Vector2f(1, 0)), y = Generate(camera, pFilm + Vector2f(0, 1));
+        EXPECT_LT(Distance(crd->ray.rxOrigin, x.ray.o), 1e-3f) << camera.Name();
+        EXPECT_LT(Distance(crd->ray.ryOrigin, y.ray.o), 1e-3f) << camera.Name();
+        // Directions agree to first order: within 5 % of a pixel's turn (the rest is second
+        // order; the equirectangular map's pixels, 5.6 degrees here, bend the most).
+        Float turnX = Length(x.ray.d - crd->ray.d), turnY = Length(y.ray.d - crd->ray.d);
+        EXPECT_LT(Length(crd->ray.rxDirection - x.ray.d), 0.05f * turnX + 1e-6f) << camera.Name();
+        EXPECT_LT(Length(crd->ray.ryDirection - y.ray.d), 0.05f * turnY + 1e-6f) << camera.Name();
+    }
+}
+
+// A plane facing a pinhole camera at distance D, with uv = its (x, y): one pixel spans
+// 2 D tan(fov / 2) / N in u, from the ray's differentials exactly and from the camera's
+// approximation (the smallest differential over the film, scaled by 1 / sqrt(spp)) to within
+// the film's edge-to-centre variation.
+TEST(RayDifferentials, FootprintOnAPlaneFacingTheCamera) {
+    Point2i res(100, 100);
+    Float D = 4, fov = 40;
+    Camera camera = PerspectiveCamera(Transform(), res, DefaultScreenWindow(res), fov);
+    CameraDifferentials approx(camera, res);
+    CameraSample cs;
+    cs.pFilm = Point2f(50.5f, 50.5f);
+    RayDifferential ray = camera.GenerateRayDifferential(cs)->ray;
+    SurfaceInteraction si;
+    si.p = ray(D / ray.d.z);
+    si.n = si.shading.n = Normal3f(0, 0, -1);
+    si.dpdu = Vector3f(1, 0, 0);
+    si.dpdv = Vector3f(0, 1, 0);
+    Float pixel = 2 * D * std::tan(Radians(fov / 2)) / res.x;
+    ASSERT_TRUE(si.DifferentialsFrom(ray));
+    EXPECT_NEAR(std::abs(si.dudx), pixel, 1e-3f * pixel);
+    EXPECT_NEAR(std::abs(si.dvdy), pixel, 1e-3f * pixel);
+    EXPECT_NEAR(si.dudy, 0, 1e-3f * pixel);
+    EXPECT_NEAR(si.dvdx, 0, 1e-3f * pixel);
+    // 16 spp: a quarter of the pixel; the corners' pixels subtend cos^2 of the centre's.
+    Vector3f dpdx, dpdy;
+    approx.Approximate_dp_dxy(camera, si.p, si.n, 0, 16, &dpdx, &dpdy);
+    EXPECT_LE(Length(dpdx), 0.25f * pixel * 1.001f);
+    EXPECT_GE(Length(dpdx), 0.25f * pixel * 0.75f);
+    // Along x and y, to within the tilt of the corner's differential (taken in its own frame).
+    EXPECT_NEAR(std::abs(Normalize(dpdx).x), 1, 1e-2f);
+    EXPECT_NEAR(std::abs(Normalize(dpdy).y), 1, 1e-2f);
+}
+
+// Off a flat mirror the neighbours are the mirrored neighbours, leaving from where they met the
+// mirror (Igehy's reflection with dn/dx = 0); a diffuse bounce keeps none.
+TEST(RayDifferentials, FlatMirrorReflectsTheNeighbours) {
+    Point2i res(80, 60);
+    Camera camera = PerspectiveCamera(Translate(Vector3f(0, 0, 3)) * RotateX(150), res,
+                                      DefaultScreenWindow(res), 45);
+    CameraSample cs;
+    cs.pFilm = Point2f(33.3f, 21.7f);
+    RayDifferential ray = camera.GenerateRayDifferential(cs)->ray;
+    ASSERT_LT(ray.d.z, 0);
+    SurfaceInteraction si;
+    si.p = ray(-ray.o.z / ray.d.z);
+    si.n = si.shading.n = Normal3f(0, 0, 1);
+    si.dpdu = si.shading.dpdu = Vector3f(1, 0, 0);
+    si.dpdv = si.shading.dpdv = Vector3f(0, 1, 0);
+    si.wo = -Normalize(ray.d);
+    ASSERT_TRUE(si.DifferentialsFrom(ray));
+    auto mirror = [](Vector3f v) { return Vector3f(v.x, v.y, -v.z); };
+    Vector3f wi = mirror(-si.wo);
+    RayDifferential out = si.SpawnRay(ray, wi, BxDFFlags::SpecularReflection, 1);
+    ASSERT_TRUE(out.hasDifferentials);
+    Vector3f expected = mirror(ray.rxDirection - ray.d) + wi;  // wi plus the mirrored change
+    EXPECT_LT(Length(out.rxDirection - expected), 1e-4f);
+    EXPECT_LT(Distance(out.rxOrigin, si.p + si.dpdx), 1e-5f);
+    EXPECT_FALSE(si.SpawnRay(ray, wi, BxDFFlags::DiffuseReflection, 1).hasDifferentials);
 }
 
 }  // namespace

@@ -263,6 +263,23 @@ PBRT_CPU_GPU inline Transform Rotate(Float sinTheta, Float cosTheta, Vector3f ax
     m[2][1] += a.x * sinTheta;
     return Transform(m, Transpose(m));
 }
+// The rotation that turns the unit vector `from` into the unit vector `to` (pbrt-v4's
+// RotateFromTo): the product of two reflections, through planes normal to refl - from and to
+// refl - to, with refl an axis far from both.
+PBRT_CPU_GPU inline Transform RotateFromTo(Vector3f from, Vector3f to) {
+    Vector3f refl = (std::abs(from.x) < 0.72f && std::abs(to.x) < 0.72f)   ? Vector3f(1, 0, 0)
+                    : (std::abs(from.y) < 0.72f && std::abs(to.y) < 0.72f) ? Vector3f(0, 1, 0)
+                                                                           : Vector3f(0, 0, 1);
+    Vector3f u = refl - from, v = refl - to;
+    Float uu = Dot(u, u), vv = Dot(v, v), uv = Dot(u, v);
+    SquareMatrix<4> r;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            r[i][j] = (i == j ? 1 : 0) - 2 / uu * u[i] * u[j] - 2 / vv * v[i] * v[j] +
+                      4 * uv / (uu * vv) * v[i] * u[j];
+    return Transform(r, Transpose(r));
+}
+
 PBRT_CPU_GPU inline Transform Rotate(Float theta, Vector3f axis) {
     return Rotate(std::sin(Radians(theta)), std::cos(Radians(theta)), axis);
 }
