@@ -11,11 +11,62 @@
 
 #include "pbrt_ext/util/sampling.h"
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
 
 namespace pbrt {
 
 using namespace shapedetail;
+
+namespace {
+
+// The roots t0 <= t1 of |o + t d|^2 = radius^2 over the first N coordinates (3: a sphere about
+// the origin; 2: a cylinder about z), in double, with the discriminant written as
+// 4a (r + l)(r - l), l the distance from the centre or axis to the ray's line: no cancellation
+// for rays far from the quadric (pbrt-v4 6.8.3). None where the line misses it, or has no
+// direction in those coordinates.
+template <int N>
+pstd::optional<std::array<double, 2>> CenteredQuadraticRoots(Point3f o, Vector3f d,
+                                                             Float radius) {
+    double a = 0, b = 0, c = -double(radius) * radius;
+    for (int i = 0; i < N; ++i) {
+        a += double(d[i]) * d[i];
+        b += 2 * double(d[i]) * o[i];
+        c += double(o[i]) * o[i];
+    }
+    if (a == 0)
+        return {};
+    double f = b / (2 * a), l2 = 0;
+    for (int i = 0; i < N; ++i)
+        l2 += Sqr(o[i] - f * d[i]);
+    double len = std::sqrt(l2);
+    double discrim = 4 * a * (radius + len) * (radius - len);
+    if (discrim < 0)
+        return {};
+    double rootDiscrim = std::sqrt(discrim);
+    double q = (b < 0) ? -0.5 * (b - rootDiscrim) : -0.5 * (b + rootDiscrim);
+    if (q == 0)
+        return {};
+    double t0 = q / a, t1 = c / q;
+    return std::array<double, 2>{std::min(t0, t1), std::max(t0, t1)};
+}
+
+Point3f PointAt(Point3f o, Vector3f d, double t) {
+    return Point3f(Float(o.x + t * d.x), Float(o.y + t * d.y), Float(o.z + t * d.z));
+}
+
+// A quadric's full intersection from its BasicIntersect.
+template <typename Quadric>
+pstd::optional<ShapeIntersection> IntersectQuadric(const Quadric &q, const Ray &ray, Float tMax) {
+    pstd::optional<QuadricIntersection> isect = q.BasicIntersect(ray, tMax);
+    if (!isect)
+        return {};
+    return ShapeIntersection{q.InteractionFromIntersection(*isect, -Normalize(ray.d)),
+                             isect->tHit};
+}
+
+}  // namespace
 
 // ---------------------------------------------------------------------------------------
 // Sphere
@@ -78,34 +129,16 @@ Point2f Sphere::UV(Point3f pObj) const {
 pstd::optional<QuadricIntersection> Sphere::BasicIntersect(const Ray &r, Float tMax) const {
     Point3f oi = objectFromWorld(r.o);
     Vector3f di = objectFromWorld(r.d);
-    // In double, with the discriminant written as 4a (r + l)(r - l), l the distance from the
-    // centre to the line: no cancellation for rays far from the sphere (pbrt-v4 6.8.3).
-    double ox = oi.x, oy = oi.y, oz = oi.z, dx = di.x, dy = di.y, dz = di.z;
-    double a = dx * dx + dy * dy + dz * dz, b = 2 * (dx * ox + dy * oy + dz * oz);
-    double c = ox * ox + oy * oy + oz * oz - double(radius) * radius;
-    if (a == 0)
+    pstd::optional<std::array<double, 2>> roots = CenteredQuadraticRoots<3>(oi, di, radius);
+    if (!roots)
         return {};
-    double f = b / (2 * a);
-    double vx = ox - f * dx, vy = oy - f * dy, vz = oz - f * dz;
-    double len = std::sqrt(vx * vx + vy * vy + vz * vz);
-    double discrim = 4 * a * (radius + len) * (radius - len);
-    if (discrim < 0)
-        return {};
-    double rootDiscrim = std::sqrt(discrim);
-    double q = (b < 0) ? -0.5 * (b - rootDiscrim) : -0.5 * (b + rootDiscrim);
-    if (q == 0)
-        return {};
-    double t0 = q / a, t1 = c / q;
-    if (t0 > t1)
-        std::swap(t0, t1);
-
     // The nearer root first; the farther one when clipping removes the nearer.
-    for (double t : {t0, t1}) {
+    for (double t : *roots) {
         if (t <= 0)
             continue;
         if (!(t < tMax))
             return {};
-        Point3f pHit(Float(ox + t * dx), Float(oy + t * dy), Float(oz + t * dz));
+        Point3f pHit = PointAt(oi, di, t);
         pHit *= radius / Length(Vector3f(pHit));
         if (pHit.x == 0 && pHit.y == 0)
             pHit.x = 1e-5f * radius;  // keeps phi and dp/du defined at the poles
@@ -138,11 +171,7 @@ SurfaceInteraction Sphere::InteractionFromIntersection(const QuadricIntersection
 }
 
 pstd::optional<ShapeIntersection> Sphere::Intersect(const Ray &ray, Float tMax) const {
-    pstd::optional<QuadricIntersection> isect = BasicIntersect(ray, tMax);
-    if (!isect)
-        return {};
-    return ShapeIntersection{InteractionFromIntersection(*isect, -Normalize(ray.d)),
-                             isect->tHit};
+    return IntersectQuadric(*this, ray, tMax);
 }
 
 bool Sphere::IntersectP(const Ray &ray, Float tMax) const {
@@ -274,32 +303,17 @@ Float Cylinder::AreaPDF(Point3f pObj) const {
 pstd::optional<QuadricIntersection> Cylinder::BasicIntersect(const Ray &r, Float tMax) const {
     Point3f oi = objectFromWorld(r.o);
     Vector3f di = objectFromWorld(r.d);
-    // The sphere's robust quadratic in the xy plane (pbrt-v4 6.3.2): the discriminant as
-    // 4a (r + l)(r - l), l the distance from the axis to the ray's line, in double.
-    double ox = oi.x, oy = oi.y, dx = di.x, dy = di.y;
-    double a = dx * dx + dy * dy, b = 2 * (dx * ox + dy * oy);
-    double c = ox * ox + oy * oy - double(radius) * radius;
-    if (a == 0)
-        return {};  // parallel to the axis: along the surface or never on it
-    double f = b / (2 * a);
-    double vx = ox - f * dx, vy = oy - f * dy;
-    double len = std::sqrt(vx * vx + vy * vy);
-    double discrim = 4 * a * (radius + len) * (radius - len);
-    if (discrim < 0)
+    // The sphere's quadratic in the xy plane; a ray parallel to the axis has none (it runs
+    // along the surface or never meets it).
+    pstd::optional<std::array<double, 2>> roots = CenteredQuadraticRoots<2>(oi, di, radius);
+    if (!roots)
         return {};
-    double rootDiscrim = std::sqrt(discrim);
-    double q = (b < 0) ? -0.5 * (b - rootDiscrim) : -0.5 * (b + rootDiscrim);
-    if (q == 0)
-        return {};
-    double t0 = q / a, t1 = c / q;
-    if (t0 > t1)
-        std::swap(t0, t1);
-    for (double t : {t0, t1}) {
+    for (double t : *roots) {
         if (t <= 0)
             continue;
         if (!(t < tMax))
             return {};
-        Point3f pHit(Float(ox + t * dx), Float(oy + t * dy), Float(double(oi.z) + t * di.z));
+        Point3f pHit = PointAt(oi, di, t);
         Float hitRadius = std::sqrt(Sqr(pHit.x) + Sqr(pHit.y));
         pHit.x *= radius / hitRadius;
         pHit.y *= radius / hitRadius;
@@ -325,11 +339,7 @@ SurfaceInteraction Cylinder::InteractionFromIntersection(const QuadricIntersecti
 }
 
 pstd::optional<ShapeIntersection> Cylinder::Intersect(const Ray &ray, Float tMax) const {
-    pstd::optional<QuadricIntersection> isect = BasicIntersect(ray, tMax);
-    if (!isect)
-        return {};
-    return ShapeIntersection{InteractionFromIntersection(*isect, -Normalize(ray.d)),
-                             isect->tHit};
+    return IntersectQuadric(*this, ray, tMax);
 }
 
 bool Cylinder::IntersectP(const Ray &ray, Float tMax) const {
@@ -436,11 +446,7 @@ SurfaceInteraction Disk::InteractionFromIntersection(const QuadricIntersection &
 }
 
 pstd::optional<ShapeIntersection> Disk::Intersect(const Ray &ray, Float tMax) const {
-    pstd::optional<QuadricIntersection> isect = BasicIntersect(ray, tMax);
-    if (!isect)
-        return {};
-    return ShapeIntersection{InteractionFromIntersection(*isect, -Normalize(ray.d)),
-                             isect->tHit};
+    return IntersectQuadric(*this, ray, tMax);
 }
 
 bool Disk::IntersectP(const Ray &ray, Float tMax) const {

@@ -128,15 +128,7 @@ class HairBxDF {
         Float sinTheta_i = wi.x, cosTheta_i = SafeSqrt(1 - Sqr(sinTheta_i));
         Float phi = std::atan2(wi.z, wi.y) - g.phi_o;
         SampledSpectrum T = Exp(-sigma_a * (2 * g.cosGamma_t / g.cosTheta_t));
-        std::array<SampledSpectrum, pMax + 1> ap = Ap(g.cosTheta_o, T);
-        SampledSpectrum fsum(0.f);
-        for (int p = 0; p < pMax; ++p) {
-            auto [sinThetap_o, cosThetap_o] = TiltedTheta(p, g.sinTheta_o, g.cosTheta_o);
-            fsum += hairdetail::Mp(cosTheta_i, cosThetap_o, sinTheta_i, sinThetap_o, v[p]) *
-                    ap[p] * hairdetail::Np(phi, p, s, g.gamma_o, g.gamma_t);
-        }
-        fsum += hairdetail::Mp(cosTheta_i, g.cosTheta_o, sinTheta_i, g.sinTheta_o, v[pMax]) *
-                ap[pMax] / (2 * Pi);
+        SampledSpectrum fsum = SumLobes(g, sinTheta_i, cosTheta_i, phi, Ap(g.cosTheta_o, T));
         if (AbsCosTheta(wi) > 0)
             fsum /= AbsCosTheta(wi);
         return fsum;
@@ -180,16 +172,7 @@ class HairBxDF {
         Geometry g = GeometryOf(wo);
         Float sinTheta_i = wi.x, cosTheta_i = SafeSqrt(1 - Sqr(sinTheta_i));
         Float phi = std::atan2(wi.z, wi.y) - g.phi_o;
-        std::array<Float, pMax + 1> apPDF = ApPDF(g.cosTheta_o);
-        Float pdf = 0;
-        for (int p = 0; p < pMax; ++p) {
-            auto [sinThetap_o, cosThetap_o] = TiltedTheta(p, g.sinTheta_o, g.cosTheta_o);
-            pdf += hairdetail::Mp(cosTheta_i, cosThetap_o, sinTheta_i, sinThetap_o, v[p]) *
-                   apPDF[p] * hairdetail::Np(phi, p, s, g.gamma_o, g.gamma_t);
-        }
-        pdf += hairdetail::Mp(cosTheta_i, g.cosTheta_o, sinTheta_i, g.sinTheta_o, v[pMax]) *
-               apPDF[pMax] / (2 * Pi);
-        return pdf;
+        return SumLobes(g, sinTheta_i, cosTheta_i, phi, ApPDF(g.cosTheta_o));
     }
 
     PBRT_CPU_GPU SampledSpectrum rho(Vector3f wo, pstd::span<const Float> uc,
@@ -244,6 +227,21 @@ class HairBxDF {
         g.cosGamma_t = SafeSqrt(1 - Sqr(sinGamma_t));
         g.gamma_t = SafeASin(sinGamma_t);
         return g;
+    }
+
+    // The lobes Mp Np weighted by path, the paths beyond pMax spread evenly around the fiber:
+    // f (times |cos theta_i|) with the attenuations Ap, the pdf with the path probabilities.
+    template <typename T>
+    PBRT_CPU_GPU T SumLobes(const Geometry &g, Float sinTheta_i, Float cosTheta_i, Float phi,
+                            const std::array<T, pMax + 1> &weight) const {
+        T sum(0.f);
+        for (int p = 0; p < pMax; ++p) {
+            auto [sinThetap_o, cosThetap_o] = TiltedTheta(p, g.sinTheta_o, g.cosTheta_o);
+            sum += hairdetail::Mp(cosTheta_i, cosThetap_o, sinTheta_i, sinThetap_o, v[p]) *
+                   weight[p] * hairdetail::Np(phi, p, s, g.gamma_o, g.gamma_t);
+        }
+        return sum + hairdetail::Mp(cosTheta_i, g.cosTheta_o, sinTheta_i, g.sinTheta_o, v[pMax]) *
+                         weight[pMax] / (2 * Pi);
     }
 
     // The lobe of path p leaves tilted by the scales: R by -2 alpha, TT by alpha, TRT by 4 alpha.
