@@ -104,6 +104,25 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                          "motion-blur.pbrt", "fabric-woven.pbrt",
                                          "hair-fur.pbrt"));
 
+// Curves of each type with hair, a moving cylinder, a moving spherical camera, a bump map (ray
+// differentials), tangents S and a subdivision surface, all in one scene (also a fuzz seed).
+TEST(SceneLoader, GeometryFeaturesRenderTogether) {
+    Log().quiet = true;
+    std::unique_ptr<Scene> scene =
+        LoadScene(std::string(PBRT_EXT_TEST_DATA_DIR) + "/scenes/geometry-features.pbrt", Quick());
+    EXPECT_TRUE(scene->usesRayDifferentials);
+    RenderStatistics stats = Render(*scene, {0, true});
+    EXPECT_EQ(stats.discardedSamples, 0);
+    double sum = 0;
+    for (Point2i p : scene->film.PixelBounds())
+        for (int c = 0; c < 3; ++c) {
+            Float v = scene->film.GetPixelRGB(p)[c];
+            ASSERT_TRUE(std::isfinite(v));
+            sum += v;
+        }
+    EXPECT_GT(sum, 0);
+}
+
 TEST(SceneLoader, UnreferencedTexturesAndMaterialsAreNeverLoaded) {
     // The texture and the named material point at files that do not exist; nothing uses them.
     std::string file = WriteScene("unreferenced.pbrt", std::string(kHeader) + R"(
