@@ -589,10 +589,11 @@ int EmbreeAggregate::AddInstance(int objectId, const AnimatedTransform &worldFro
         throw std::runtime_error("instance inside object \"" +
                                  impl->objectNames[impl->openObject] +
                                  "\": objects do not nest");
+    if (worldFromInstance.IsAnimated())
+        impl->SetMotionTimes(worldFromInstance);  // may throw: before Embree owns anything
     RTCGeometry geom = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(geom, impl->objects[objectId].scene);
     if (worldFromInstance.IsAnimated()) {
-        impl->SetMotionTimes(worldFromInstance);
         rtcSetGeometryTimeStepCount(geom, 2);
         for (unsigned step = 0; step < 2; ++step) {
             RTCQuaternionDecomposition q = ToEmbree(worldFromInstance.Keyframes()[step]);

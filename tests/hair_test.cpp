@@ -127,9 +127,11 @@ TEST(HairMaterial, AbsorptionFromReflectanceAndMelanin) {
     // Eumelanin absorbs blue more than red (pbrt-v4's sigma_a (0.419, 0.697, 1.37) per unit).
     SampledWavelengths lambda = SampledWavelengths::SampleVisible(0.5f);
     SampledSpectrum eu = HairSigmaAFromConcentration(1, 0, lambda);
-    for (int i = 1; i < NSpectrumSamples; ++i)
-        if (lambda[i] < lambda[0])
+    for (int i = 1; i < NSpectrumSamples; ++i) {
+        if (lambda[i] < lambda[0]) {
             EXPECT_GT(eu[i], eu[0]);
+        }
+    }
 }
 
 }  // namespace

@@ -130,8 +130,9 @@ TEST(MotionBlur, AggregateFindsAMovingInstanceWhereItsTransformIsThen) {
         // A ray through where the ball is at another time misses it now.
         Ray elsewhere(motion.Interpolate(1 - time)(Point3f(0, 0, 0)) + Vector3f(0, 0, 5),
                       Vector3f(0, 0, -1), -1, time);
-        if (std::abs(1 - 2 * time) > 0.3f)
+        if (std::abs(1 - 2 * time) > 0.3f) {
             EXPECT_FALSE(aggregate.IntersectP(elsewhere)) << "time " << time;
+        }
     }
     // Another time interval in the same aggregate is refused.
     EmbreeAggregate mixed;
