@@ -644,9 +644,7 @@ pstd::optional<ShapeIntersection> EmbreeAggregate::Intersect(const Ray &ray, Flo
     Vector3f wo = -Normalize(ray.d);
     SurfaceInteraction si;
     if (instance) {
-        const AnimatedTransform &motion = instance->worldFromInstance;
-        Transform worldFromInstance =
-            motion.IsAnimated() ? motion.Interpolate(ray.time) : motion.Start();
+        Transform worldFromInstance = instance->worldFromInstance.Interpolate(ray.time);
         Ray local = g.kind == GeometryKind::Curves ? worldFromInstance.ApplyInverse(ray) : ray;
         si = TransformInteraction(worldFromInstance, impl->Interaction(g, rh, wo, local));
     } else {

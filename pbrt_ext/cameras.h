@@ -47,17 +47,11 @@ class CameraMotion {
     // The camera-space ray r, given the time u picks, in world space.
     Ray ToWorld(Ray r, Float u) const {
         r.time = Lerp(u, shutterOpen, shutterClose);
-        if (!worldFromCamera.IsAnimated())
-            return worldFromCamera.Start()(r);
-        return worldFromCamera.Interpolate(r.time)(r);
+        return worldFromCamera(r);
     }
     // At the shutter's opening, and at a ray's time.
     const Transform &Start() const { return worldFromCamera.Start(); }
-    Transform At(Float time) const {
-        return worldFromCamera.IsAnimated() ? worldFromCamera.Interpolate(time)
-                                            : worldFromCamera.Start();
-    }
-    bool IsAnimated() const { return worldFromCamera.IsAnimated(); }
+    Transform At(Float time) const { return worldFromCamera.Interpolate(time); }
 
   private:
     AnimatedTransform worldFromCamera;

@@ -29,6 +29,11 @@ Filter CreateFilter(const SceneEntity &filter);
 RGBFilm CreateFilm(const SceneEntity &film, Float exposureTime, Filter filter,
                    const RenderOverrides &overrides);
 Camera CreateCamera(const CameraSceneEntity &camera, const RGBFilm &film);
+// Keyframes of something that moves (a shape, an instance, the camera); a singular or
+// projective keyframe is a ParseError at loc, its message after `what`.
+AnimatedTransform CreateAnimatedTransform(const FileLoc &loc, const Transform &start,
+                                          Float startTime, const Transform &end, Float endTime,
+                                          const std::string &what = "");
 // The camera's shutterclose - shutteropen (pbrt-v4's exposure time); throws ParseError unless
 // positive.
 Float ExposureTime(const CameraSceneEntity &camera);

@@ -240,19 +240,25 @@ Float ExposureTime(const CameraSceneEntity &e) {
     return exposure;
 }
 
-// The camera's placement over its shutter interval; a moving camera's keyframes must be
-// invertible affine transforms.
+AnimatedTransform CreateAnimatedTransform(const FileLoc &loc, const Transform &start,
+                                          Float startTime, const Transform &end, Float endTime,
+                                          const std::string &what) {
+    try {
+        return AnimatedTransform(start, startTime, end, endTime);
+    } catch (const std::invalid_argument &error) {
+        throw ParseError(loc, what + error.what());
+    }
+}
+
+// The camera's placement over its shutter interval.
 CameraMotion CameraMotionOf(const CameraSceneEntity &e) {
     const ParameterDictionary &p = e.parameters;
     Float open = p.GetOneFloat("shutteropen", 0), close = p.GetOneFloat("shutterclose", 1);
-    try {
-        return CameraMotion(AnimatedTransform(Inverse(e.cameraFromWorld.t[0]),
-                                              e.transformStartTime,
-                                              Inverse(e.cameraFromWorld.t[1]), e.transformEndTime),
-                            open, close);
-    } catch (const std::invalid_argument &error) {
-        throw ParseError(e.loc, std::string("the camera's transform: ") + error.what());
-    }
+    return CameraMotion(CreateAnimatedTransform(e.loc, Inverse(e.cameraFromWorld.t[0]),
+                                                e.transformStartTime,
+                                                Inverse(e.cameraFromWorld.t[1]),
+                                                e.transformEndTime, "the camera's transform: "),
+                        open, close);
 }
 
 // pbrt-v4 reads the lens, frame and screen-window parameters of a spherical camera and has no

@@ -116,11 +116,8 @@ struct Resolvers {
 // The keyframes of a moving shape or instance, at the scene's TransformTimes.
 AnimatedTransform Motion(const SceneDescription &scene, const Transform &start,
                          const Transform &end, const FileLoc &loc) {
-    try {
-        return AnimatedTransform(start, scene.transformStartTime, end, scene.transformEndTime);
-    } catch (const std::invalid_argument &error) {
-        throw ParseError(loc, error.what());
-    }
+    return CreateAnimatedTransform(loc, start, scene.transformStartTime, end,
+                                   scene.transformEndTime);
 }
 
 // A moving shape (pbrt-v4's AnimatedPrimitive): made in its object space as an object of its

@@ -51,15 +51,15 @@ Float RenderedRed(const std::string &file) {
 // 0.003 of the interval; 1024 zsobol samples stratify time far below that).
 constexpr Float kSkyShowing = 2.f / 3.f, kTolerance = 0.01f;
 
+// The CTM moving along x from `from` at the start of the motion to 3 at its end.
+std::string MoveAlongX(int from) {
+    return "\nActiveTransform StartTime\nTranslate " + std::to_string(from) +
+           " 0 0\nActiveTransform EndTime\nTranslate 3 0 0\nActiveTransform All\n";
+}
+
 TEST(MotionBlur, MovingSphereCoversThePixelForItsAnalyticFraction) {
-    std::string file = WriteScene("sphere.pbrt", OnePixel("") + R"(
-ActiveTransform StartTime
-Translate -3 0 0
-ActiveTransform EndTime
-Translate 3 0 0
-ActiveTransform All
-Shape "sphere"
-)");
+    std::string file =
+        WriteScene("sphere.pbrt", OnePixel("") + MoveAlongX(-3) + "Shape \"sphere\"\n");
     EXPECT_NEAR(RenderedRed(file), kSkyShowing, kTolerance);
 }
 
@@ -68,44 +68,22 @@ TEST(MotionBlur, MovingInstanceAndMovingCameraGiveTheSameFraction) {
 ObjectBegin "ball"
   Shape "sphere"
 ObjectEnd
-ActiveTransform StartTime
-Translate -3 0 0
-ActiveTransform EndTime
-Translate 3 0 0
-ActiveTransform All
-ObjectInstance "ball"
-)");
+)" + MoveAlongX(-3) + "ObjectInstance \"ball\"\n");
     EXPECT_NEAR(RenderedRed(instance), kSkyShowing, kTolerance);
     // The camera moves from x = 3 to -3 past a still sphere (cameraFromWorld moves the other way).
-    std::string camera = WriteScene("camera.pbrt", OnePixel(R"(
-ActiveTransform StartTime
-Translate -3 0 0
-ActiveTransform EndTime
-Translate 3 0 0
-ActiveTransform All)") + "Shape \"sphere\"\n");
+    std::string camera =
+        WriteScene("camera.pbrt", OnePixel(MoveAlongX(-3)) + "Shape \"sphere\"\n");
     EXPECT_NEAR(RenderedRed(camera), kSkyShowing, kTolerance);
 }
 
 TEST(MotionBlur, ShutterAndTransformTimesSelectThePartOfTheMotionSeen) {
     // The motion spans times 0..2; the shutter sees 0..1, x from -3 to 0: the sphere covers
     // the pixel while x > -1, the last third of the shutter.
-    std::string file = WriteScene("times.pbrt", "TransformTimes 0 2\n" + OnePixel("") + R"(
-ActiveTransform StartTime
-Translate -3 0 0
-ActiveTransform EndTime
-Translate 3 0 0
-ActiveTransform All
-Shape "sphere"
-)");
+    std::string file = WriteScene("times.pbrt", "TransformTimes 0 2\n" + OnePixel("") +
+                                                    MoveAlongX(-3) + "Shape \"sphere\"\n");
     EXPECT_NEAR(RenderedRed(file), kSkyShowing, kTolerance);
-    std::string late = WriteScene("late.pbrt", "TransformTimes 0 2\n" + OnePixel("") + R"(
-ActiveTransform StartTime
-Translate -9 0 0
-ActiveTransform EndTime
-Translate 3 0 0
-ActiveTransform All
-Shape "sphere"
-)");
+    std::string late = WriteScene("late.pbrt", "TransformTimes 0 2\n" + OnePixel("") +
+                                                   MoveAlongX(-9) + "Shape \"sphere\"\n");
     // x from -9 to -3 during the shutter: never over the pixel.
     EXPECT_NEAR(RenderedRed(late), 1, kTolerance);
 }

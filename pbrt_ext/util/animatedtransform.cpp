@@ -159,8 +159,10 @@ Float AnimatedTransform::Fraction(Float time) const {
 }
 
 Transform AnimatedTransform::Interpolate(Float time) const {
+    if (!actuallyAnimated)
+        return startTransform;
     Float f = Fraction(time);
-    if (!actuallyAnimated || f == 0)
+    if (f == 0)
         return startTransform;
     if (f == 1)
         return endTransform;

@@ -12,6 +12,7 @@
 #pragma once
 
 #include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/ray.h"
 #include "pbrt_ext/util/transform.h"
 #include "pbrt_ext/util/vecmath.h"
 
@@ -60,7 +61,13 @@ class AnimatedTransform {
     // The keyframes as Embree takes them.
     const std::array<TransformDecomposition, 2> &Keyframes() const { return keys; }
 
+    // The transform at `time` (the start one where nothing moves).
     Transform Interpolate(Float time) const;
+    // r carried by the transform at r's time; without a copy of the transform where nothing
+    // moves.
+    Ray operator()(const Ray &r) const {
+        return actuallyAnimated ? Interpolate(r.time)(r) : startTransform(r);
+    }
     std::string ToString() const;
 
   private:
