@@ -381,6 +381,9 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
         {"load_loopsubdiv_nonmanifold.pbrt",
          ":3:1: error: loopsubdiv: edge 0-1 is used twice in the same direction (triangles 0 "
          "and 1): the mesh must be a consistently oriented manifold"},
+        {"load_spherical_mapping.pbrt",
+         ":1:20: error: spherical camera \"mapping\" \"fisheye\" is unknown; expected "
+         "equalarea or equirectangular"},
         {"load_curve_points.pbrt",
          ":3:1: error: curve: 5 control points; the degree 3 Bézier basis needs 4 + n * 3, n >= 0"},
         {"load_curve_type.pbrt",
