@@ -418,6 +418,16 @@ struct EmbreeAggregate::Impl {
         return motionTimes.IsAnimated() ? motionTimes.Fraction(time) : 0;
     }
 
+    // A hit inside an instance, described in the instance's space at the ray's time, then
+    // carried to the world.
+    SurfaceInteraction InstanceInteraction(const InstanceData &instance, const GeometryRecord &g,
+                                           const RTCRayHit &rh, Vector3f wo,
+                                           const Ray &ray) const {
+        Transform worldFromInstance = instance.worldFromInstance.Interpolate(ray.time);
+        Ray local = g.kind == GeometryKind::Curves ? worldFromInstance.ApplyInverse(ray) : ray;
+        return TransformInteraction(worldFromInstance, Interaction(g, rh, wo, local));
+    }
+
     void Check(const char *what) const {
         RTCError code = rtcGetDeviceError(device);
         if (code != RTC_ERROR_NONE)
@@ -632,7 +642,6 @@ pstd::optional<ShapeIntersection> EmbreeAggregate::Intersect(const Ray &ray, Flo
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
         return {};
 
-    // A hit inside an instance is described in the instance's space, then carried to the world.
     const SceneData *scene = &impl->world;
     const InstanceData *instance = nullptr;
     if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
@@ -642,14 +651,8 @@ pstd::optional<ShapeIntersection> EmbreeAggregate::Intersect(const Ray &ray, Flo
     }
     const GeometryRecord &g = scene->geometries[rh.hit.geomID];
     Vector3f wo = -Normalize(ray.d);
-    SurfaceInteraction si;
-    if (instance) {
-        Transform worldFromInstance = instance->worldFromInstance.Interpolate(ray.time);
-        Ray local = g.kind == GeometryKind::Curves ? worldFromInstance.ApplyInverse(ray) : ray;
-        si = TransformInteraction(worldFromInstance, impl->Interaction(g, rh, wo, local));
-    } else {
-        si = impl->Interaction(g, rh, wo, ray);
-    }
+    SurfaceInteraction si = instance ? impl->InstanceInteraction(*instance, g, rh, wo, ray)
+                                     : impl->Interaction(g, rh, wo, ray);
     si.wo = wo;
     si.time = ray.time;
     si.materialIndex = g.attrs.materialIndex;
@@ -671,6 +674,8 @@ bool EmbreeAggregate::IntersectP(const Ray &ray, Float tMax) const {
     rtcOccluded1(impl->world.scene, &context, &r);
     return r.tfar < 0;
 }
+
+bool EmbreeAggregate::HasMotion() const { return impl->motionTimes.IsAnimated(); }
 
 Bounds3f EmbreeAggregate::WorldBound() const {
     if (!impl->committed || impl->world.geometries.empty())

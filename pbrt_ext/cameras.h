@@ -52,6 +52,7 @@ class CameraMotion {
     // At the shutter's opening, and at a ray's time.
     const Transform &Start() const { return worldFromCamera.Start(); }
     Transform At(Float time) const { return worldFromCamera.Interpolate(time); }
+    bool IsAnimated() const { return worldFromCamera.IsAnimated(); }
 
   private:
     AnimatedTransform worldFromCamera;
@@ -184,6 +185,9 @@ class Camera {
     Transform WorldFromCamera(Float time) const {
         return std::visit([&](const auto &c) { return c.Motion().At(time); }, camera);
     }
+    bool IsMoving() const {
+        return std::visit([](const auto &c) { return c.Motion().IsAnimated(); }, camera);
+    }
     const Transform &WorldFromCamera() const {
         return std::visit([](const auto &c) -> const Transform & { return c.WorldFromCamera(); }, camera);
     }
@@ -220,12 +224,16 @@ inline Float RayDifferentialScale(int samplesPerPixel) {
 
 // The camera sample for pixel pPixel (pbrt-v4's GetCameraSample): the film position is offset
 // from the pixel center by a point drawn from the filter, whose weight the film applies; then
-// the time and the lens position, in pbrt-v4's order of sample dimensions.
-inline CameraSample GetCameraSample(Sampler &sampler, Point2i pPixel, const Filter &filter) {
+// the time and the lens position, in pbrt-v4's order of sample dimensions. The time takes its
+// dimension only where something moves (`moving`): a still scene draws the samples it drew
+// before motion blur existed, and pays nothing for it.
+inline CameraSample GetCameraSample(Sampler &sampler, Point2i pPixel, const Filter &filter,
+                                    bool moving = false) {
     FilterSample fs = filter.Sample(sampler.GetPixel2D());
     CameraSample cs;
     cs.pFilm = Point2f(pPixel.x + 0.5f + fs.p.x, pPixel.y + 0.5f + fs.p.y);
-    cs.time = sampler.Get1D();
+    if (moving)
+        cs.time = sampler.Get1D();
     cs.pLens = sampler.Get2D();
     cs.filterWeight = fs.weight;
     return cs;

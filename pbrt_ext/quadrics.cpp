@@ -29,12 +29,13 @@ namespace {
 template <int N>
 pstd::optional<std::array<double, 2>> CenteredQuadraticRoots(Point3f o, Vector3f d,
                                                              Float radius) {
-    double a = 0, b = 0, c = -double(radius) * radius;
+    double a = 0, b = 0, c = 0;
     for (int i = 0; i < N; ++i) {
         a += double(d[i]) * d[i];
         b += 2 * double(d[i]) * o[i];
         c += double(o[i]) * o[i];
     }
+    c -= double(radius) * radius;
     if (a == 0)
         return {};
     double f = b / (2 * a), l2 = 0;

@@ -95,7 +95,7 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
             sampler.StartPixelSample(p, i);
             // pbrt-v4's order: the wavelengths take the first dimension, then the camera sample.
             SampledWavelengths lambda = scene.film.SampleWavelengths(sampler.Get1D());
-            CameraSample cs = GetCameraSample(sampler, p, scene.film.GetFilter());
+            CameraSample cs = GetCameraSample(sampler, p, scene.film.GetFilter(), scene.hasMotion);
             pstd::optional<CameraRayDifferential> cr = CameraRayFor(scene, cs);
             SampledSpectrum L(0.f);
             if (cr) {

@@ -8,7 +8,8 @@ namespace pbrt {
 
 SceneBuilder::SceneBuilder(Camera camera, RGBFilm film, Sampler sampler)
     : scene(new Scene{EmbreeAggregate(), {}, {}, {}, LightSampler(UniformLightSampler({})),
-                      std::move(camera), {}, false, std::move(film), std::move(sampler), {}, {}, -1}) {}
+                      std::move(camera), {}, false, false, std::move(film), std::move(sampler),
+                      {}, {}, -1}) {}
 
 int SceneBuilder::AddMaterial(Material material) {
     scene->materials.push_back(std::move(material));
@@ -168,6 +169,7 @@ void SceneBuilder::SetLightSampler(std::string name) {
 
 std::unique_ptr<Scene> SceneBuilder::Build() {
     scene->aggregate.Commit();
+    scene->hasMotion = scene->camera.IsMoving() || scene->aggregate.HasMotion();
     for (const Material &m : scene->materials)
         scene->usesRayDifferentials |= m.UsesRayDifferentials();
     if (scene->usesRayDifferentials)

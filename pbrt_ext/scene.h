@@ -84,6 +84,8 @@ class Scene {
     // Whether some material reads a hit's footprint (a bump map): only then are the camera's
     // ray differentials generated and every hit's footprint computed.
     bool usesRayDifferentials = false;
+    // Whether the camera or some instance moves: only then does a camera sample draw a time.
+    bool hasMotion = false;
     RGBFilm film;
     Sampler sampler;
     PathIntegratorOptions integratorOptions;
