@@ -62,12 +62,16 @@ class TextureResolver {
     SpectrumTexture GetSpectrumTexture(const ParameterDictionary &parameters, const std::string &name,
                                        pbrt::Spectrum defaultValue, SpectrumType type);
     const std::string &Folder() const { return folder; }
+    // Whether a texture made so far filters over the pixel's footprint (an image map or a
+    // checkerboard): the scene then needs ray differentials.
+    bool ReadsFootprint() const { return readsFootprint; }
 
   private:
     struct Cache;
     const SceneDescription &scene;
     std::string folder;
     std::unique_ptr<Cache> cache;
+    bool readsFootprint = false;
 };
 
 // Materials (create_materials.cpp). The material's type is the entity's name, or for a named

@@ -49,21 +49,23 @@ ImageTexture CreateImageTexture(const TransformedSceneEntity &e, const std::stri
     if (!encoding)
         throw ParseError(*p.Loc("encoding"), "unknown encoding \"" + encodingName +
                                                  "\": expected sRGB, linear or \"gamma g\"");
-    std::string filter = p.GetOneString("filter", "bilinear");
-    t.filter = filter == "point" ? ImageFilter::Point : ImageFilter::Bilinear;
-    if (filter != "point" && filter != "bilinear")
-        WarningAt(*p.Loc("filter"), "texture filter \"%s\" is not supported: using bilinear",
-                  filter.c_str());
-    p.GetOneFloat("maxanisotropy", 8);
+    std::string filterName = p.GetOneString("filter", "bilinear");
+    std::optional<FilterFunction> filter = ParseFilterFunction(filterName);
+    if (!filter)
+        throw ParseError(*p.Loc("filter"), "unknown texture filter \"" + filterName +
+                                               "\": expected point, bilinear, trilinear or ewa");
+    Float maxAnisotropy = p.GetOneFloat("maxanisotropy", 8);
+    if (!(maxAnisotropy >= 1))
+        throw ParseError(*p.Loc("maxanisotropy"), "\"maxanisotropy\" must be at least 1");
     std::string wrap = p.GetOneString("wrap", "repeat");
     pstd::optional<WrapMode> wrapMode = ParseWrapMode(wrap);
     if (!wrapMode)
         throw ParseError(*p.Loc("wrap"), "unknown wrap mode \"" + wrap +
                                              "\": expected repeat, clamp, black or octahedralsphere");
-    t.wrapMode = *wrapMode;
     t.scale = p.GetOneFloat("scale", 1);
     t.invert = p.GetOneBool("invert", false);
-    t.image = ImageTextureCache::Get(path, *encoding);
+    t.mipmap = ImageTextureCache::GetMIPMap(path, *encoding, *wrapMode,
+                                            MIPMapFilterOptions{*filter, maxAnisotropy});
     return t;
 }
 
@@ -90,9 +92,11 @@ FloatTexture TextureResolver::Float(const ParameterDictionary &p, const std::str
         result = FloatMixTexture(Float(tp, "tex1", 0), Float(tp, "tex2", 1), Float(tp, "amount", 0.5f));
     } else if (e.name == "checkerboard") {
         result = FloatCheckerboardTexture(GetMapping(e), Float(tp, "tex1", 1), Float(tp, "tex2", 0));
+        readsFootprint = true;
         tp.GetOneInt("dimension", 2);
     } else if (e.name == "imagemap") {
         result = CreateImageTexture<FloatImageTexture>(e, folder);
+        readsFootprint = true;
     } else {
         WarningAt(e.loc, "texture \"%s\" is not supported: constant 0.5", e.name.c_str());
         return cache->floats.emplace(texture, FloatTexture(0.5f)).first->second;
@@ -126,11 +130,13 @@ SpectrumTexture TextureResolver::GetSpectrumTexture(const ParameterDictionary &p
     } else if (e.name == "checkerboard") {
         result = SpectrumCheckerboardTexture(GetMapping(e), GetSpectrumTexture(tp, "tex1", one, type),
                                              GetSpectrumTexture(tp, "tex2", zero, type));
+        readsFootprint = true;
         tp.GetOneInt("dimension", 2);
     } else if (e.name == "imagemap") {
         SpectrumImageTexture t = CreateImageTexture<SpectrumImageTexture>(e, folder);
         t.type = type;
         result = std::move(t);
+        readsFootprint = true;
     } else {
         WarningAt(e.loc, "texture \"%s\" is not supported: constant 0.5", e.name.c_str());
         return cache->spectra.emplace(texture, SpectrumTexture(pbrt::Spectrum(0.5f))).first->second;

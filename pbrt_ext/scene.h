@@ -81,8 +81,8 @@ class Scene {
     LightSampler lightSampler;
     Camera camera;
     CameraDifferentials cameraDifferentials;
-    // Whether some material reads a hit's footprint (a bump map): only then are the camera's
-    // ray differentials generated and every hit's footprint computed.
+    // Whether some material reads a hit's footprint (a bump map, a filtered texture): only then
+    // are the camera's ray differentials generated and every hit's footprint computed.
     bool usesRayDifferentials = false;
     // Whether the camera or some instance moves: only then does a camera sample draw a time.
     bool hasMotion = false;
@@ -155,6 +155,10 @@ class SceneBuilder {
 
     void SetIntegrator(PathIntegratorOptions options) { integratorOptions = options; }
     void SetLightSampler(std::string name);  // "bvh" (default), "power" or "uniform"
+
+    // Ray differentials are generated when a material's bump map asks for them (Build() sees
+    // those) or a texture filters over the pixel's footprint (its creator says so here).
+    void RequireRayDifferentials() { scene->usesRayDifferentials = true; }
 
     // The scene, ready to render. The builder is left empty.
     std::unique_ptr<Scene> Build();

@@ -199,6 +199,7 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
             worldShapes.push_back(int(i));
     AddShapes(scene, worldShapes, builder, resolvers);
     AddInstances(scene, builder, resolvers);
+    if (textures.ReadsFootprint()) builder.RequireRayDifferentials();
     for (const TransformedSceneEntity &light : scene.lights)
         if (std::optional<Light> l = CreateLight(light, folder))
             builder.AddLight(std::move(*l));

@@ -6,18 +6,33 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <tuple>
 #include <utility>
 
 namespace pbrt {
 
+Float Checkerboard(const UVMapping &mapping, const TextureEvalContext &ctx) {
+    // d is the second antiderivative of the 1D checks (+1 on even squares, -1 on odd ones), so
+    // that the second difference of d over [x - r, x + r] is their integral against a tent of
+    // radius r.
+    auto d = [](Float x) {
+        Float y = x / 2 - std::floor(x / 2) - 0.5f;
+        return x / 2 + y * (1 - 2 * std::abs(y));
+    };
+    auto filtered = [&](Float x, Float r) -> Float {
+        if (std::floor(x - r) == std::floor(x + r)) return 1 - 2 * (int(std::floor(x)) & 1);
+        return (d(x + r) - 2 * d(x) + d(x - r)) / Sqr(r);
+    };
+    TexCoord2D c = mapping.Map(ctx);
+    Float ds = 1.5f * std::max(std::abs(c.dsdx), std::abs(c.dsdy));
+    Float dt = 1.5f * std::max(std::abs(c.dtdx), std::abs(c.dtdy));
+    return 0.5f - filtered(c.st[0], ds) * filtered(c.st[1], dt) / 2;
+}
+
 RGB ImageTextureBase::ScaledLookup(const TextureEvalContext &ctx) const {
-    Point2f st = mapping.Map(ctx);
-    st[1] = 1 - st[1];
-    if (filter == ImageFilter::Bilinear) return scale * image->Bilerp(st, wrapMode);
-    // The texel containing st; floor, not truncation, so that repeat works left of zero.
-    Point2i res = image->Resolution();
-    Point2i p(int(std::floor(st[0] * res.x)), int(std::floor(st[1] * res.y)));
-    return scale * image->GetChannels(p, wrapMode);
+    TexCoord2D c = mapping.Map(ctx);
+    c.st[1] = 1 - c.st[1];
+    return scale * mipmap->Filter(c.st, Vector2f(c.dsdx, -c.dtdx), Vector2f(c.dsdy, -c.dtdy));
 }
 
 Float FloatImageTexture::Evaluate(const TextureEvalContext &ctx) const {
@@ -45,36 +60,63 @@ SampledSpectrum SpectrumImageTexture::Evaluate(const TextureEvalContext &ctx,
 
 namespace {
 
-struct CacheState {
+// Values made once per key, outside the lock so that different files load in parallel; if two
+// threads race on one key, the first insertion wins and both get the same value.
+template <typename Key, typename Value>
+class OnceCache {
+  public:
+    template <typename Make>
+    std::shared_ptr<const Value> Get(const Key &key, Make make) {
+        {
+            std::lock_guard<std::mutex> lock(mutex);
+            if (auto it = values.find(key); it != values.end()) return it->second;
+        }
+        auto value = std::make_shared<const Value>(make());
+        std::lock_guard<std::mutex> lock(mutex);
+        return values.emplace(key, std::move(value)).first->second;
+    }
+    void Clear() {
+        std::lock_guard<std::mutex> lock(mutex);
+        values.clear();
+    }
+
+  private:
     std::mutex mutex;
-    std::map<std::pair<std::string, std::string>, std::shared_ptr<const Image>> images;
+    std::map<Key, std::shared_ptr<const Value>> values;
 };
 
-CacheState &Cache() {
-    static CacheState cache;
-    return cache;
+using ImageKey = std::pair<std::string, std::string>;  // file, encoding
+using MIPMapKey = std::tuple<std::string, std::string, int, int, Float>;  // and wrap, filter
+
+OnceCache<ImageKey, Image> &Images() {
+    static OnceCache<ImageKey, Image> images;
+    return images;
+}
+
+OnceCache<MIPMapKey, MIPMap> &MIPMaps() {
+    static OnceCache<MIPMapKey, MIPMap> mipmaps;
+    return mipmaps;
 }
 
 }  // namespace
 
 std::shared_ptr<const Image> ImageTextureCache::Get(const std::string &filename,
                                                    ColorEncoding encoding) {
-    CacheState &cache = Cache();
-    auto key = std::make_pair(filename, encoding.ToString());
-    {
-        std::lock_guard<std::mutex> lock(cache.mutex);
-        if (auto it = cache.images.find(key); it != cache.images.end()) return it->second;
-    }
-    // Decoded outside the lock so that different files load in parallel; if two threads race
-    // on the same file, the first insertion wins and both get the same image.
-    auto image = std::make_shared<const Image>(Image::Read(filename, encoding));
-    std::lock_guard<std::mutex> lock(cache.mutex);
-    return cache.images.emplace(key, std::move(image)).first->second;
+    return Images().Get(ImageKey(filename, encoding.ToString()),
+                        [&] { return Image::Read(filename, encoding); });
+}
+
+std::shared_ptr<const MIPMap> ImageTextureCache::GetMIPMap(const std::string &filename,
+                                                          ColorEncoding encoding, WrapMode wrapMode,
+                                                          MIPMapFilterOptions options) {
+    MIPMapKey key(filename, encoding.ToString(), int(wrapMode), int(options.filter),
+                  options.maxAnisotropy);
+    return MIPMaps().Get(key, [&] { return MIPMap(Image::Read(filename, encoding), wrapMode, options); });
 }
 
 void ImageTextureCache::Clear() {
-    std::lock_guard<std::mutex> lock(Cache().mutex);
-    Cache().images.clear();
+    Images().Clear();
+    MIPMaps().Clear();
 }
 
 pstd::optional<WrapMode> ParseWrapMode(const std::string &name) {

@@ -7,14 +7,16 @@
 // by many materials exists once and copying a texture is cheap. Textures are host types (image
 // pixels live in a std::vector); their Evaluate() never allocates.
 //
-// Differences from pbrt-v4, and why: there are no ray differentials, so lookups are point
-// sampled (the checkerboard is not box filtered, image maps have no MIP levels and "trilinear"
-// or "ewa" filtering falls back to bilinear); the only 2D mapping is pbrt-v4's "uv" one.
+// Image textures are filtered over the pixel's footprint by a MIPMap (util/mipmap.h), and the
+// checkerboard is box filtered over it as pbrt-v4 does; the footprint comes from the ray
+// differentials of the hit (zero where the scene needs none: then the finest level is read).
+// The only 2D mapping is pbrt-v4's "uv" one.
 #pragma once
 
 #include "pbrt_ext/interaction.h"
 #include "pbrt_ext/spectrum.h"
 #include "pbrt_ext/util/image.h"
+#include "pbrt_ext/util/mipmap.h"
 #include "pbrt_ext/util/spectrum.h"
 
 #include <memory>
@@ -37,11 +39,18 @@ struct TextureEvalContext {
     Float dudx = 0, dudy = 0, dvdx = 0, dvdy = 0;
 };
 
+// Texture coordinates and their derivatives along the pixel's x and y.
+struct TexCoord2D {
+    Point2f st;
+    Float dsdx = 0, dsdy = 0, dtdx = 0, dtdy = 0;
+};
+
 // pbrt-v4's UVMapping: (s, t) = (su u + du, sv v + dv).
 struct UVMapping {
     Float su = 1, sv = 1, du = 0, dv = 0;
-    Point2f Map(const TextureEvalContext &ctx) const {
-        return Point2f(su * ctx.uv[0] + du, sv * ctx.uv[1] + dv);
+    TexCoord2D Map(const TextureEvalContext &ctx) const {
+        return TexCoord2D{Point2f(su * ctx.uv[0] + du, sv * ctx.uv[1] + dv), su * ctx.dudx,
+                          su * ctx.dudy, sv * ctx.dvdx, sv * ctx.dvdy};
     }
 };
 
@@ -107,29 +116,24 @@ using SpectrumMixTexture = detail::MixTexture<SpectrumTexture>;
 using FloatCheckerboardTexture = detail::CheckerboardTexture<FloatTexture>;
 using SpectrumCheckerboardTexture = detail::CheckerboardTexture<SpectrumTexture>;
 
-// 0 for the squares where CheckerboardTexture shows tex1, 1 where it shows tex2.
-inline Float Checkerboard(const UVMapping &mapping, const TextureEvalContext &ctx) {
-    Point2f st = mapping.Map(ctx);
-    int parity = (int(std::floor(st[0])) + int(std::floor(st[1]))) & 1;
-    return Float(parity);
-}
+// The weight of tex2 in CheckerboardTexture: 0 on the squares where it shows tex1, 1 on the
+// others, and between them where the pixel's footprint covers both (pbrt-v4's Checkerboard: the
+// checks integrated against a filter 1.5 times the footprint's widest extent on each axis).
+Float Checkerboard(const UVMapping &mapping, const TextureEvalContext &ctx);
 
 // ---- Image maps -------------------------------------------------------------------------------
 
-enum class ImageFilter { Point, Bilinear };
-
-// What pbrt-v4's ImageTextureBase holds. The image is decoded once per (file, encoding) and
-// shared by every texture that reads it (ImageTextureCache).
+// What pbrt-v4's ImageTextureBase holds. The pyramid is built once per file, encoding, wrap
+// mode and filter, and shared by every texture that reads it (ImageTextureCache).
 struct ImageTextureBase {
     UVMapping mapping;
-    std::shared_ptr<const Image> image;
-    ImageFilter filter = ImageFilter::Bilinear;
-    WrapMode wrapMode = WrapMode::Repeat;
+    std::shared_ptr<const MIPMap> mipmap;
     Float scale = 1;
     bool invert = false;
 
     // scale times the filtered RGB at the mapped point; t is flipped so that t = 0 is the
-    // bottom row of the file, as in pbrt-v4.
+    // bottom row of the file, as in pbrt-v4 (and so are its derivatives, which pbrt-v4 leaves,
+    // mirroring a footprint that is oblique in texture space).
     RGB ScaledLookup(const TextureEvalContext &ctx) const;
 };
 
@@ -147,11 +151,14 @@ struct SpectrumImageTexture : ImageTextureBase {
     SampledSpectrum Evaluate(const TextureEvalContext &ctx, const SampledWavelengths &lambda) const;
 };
 
-// Images decoded for textures, by file name and encoding, for the life of the program (pbrt-v4
-// keeps its texture cache the same way). Thread-safe. Read errors propagate from Image::Read.
+// Images decoded for textures (normal maps) and the pyramids of image textures, for the life
+// of the program (pbrt-v4 keeps its texture cache the same way). Thread-safe. Read errors
+// propagate from Image::Read.
 class ImageTextureCache {
   public:
     static std::shared_ptr<const Image> Get(const std::string &filename, ColorEncoding encoding);
+    static std::shared_ptr<const MIPMap> GetMIPMap(const std::string &filename, ColorEncoding encoding,
+                                                   WrapMode wrapMode, MIPMapFilterOptions options);
     static void Clear();
 };
 

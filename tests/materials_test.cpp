@@ -35,14 +35,13 @@ BSDF GetBSDF(const Material &m, const SurfaceInteraction &si) {
 // A diffuse material bumped by d(u) from a 2-texel image [0, k] with bilinear filtering and
 // clamp: slope 2k in the middle, d = k/2 there.
 Material RampBumpedMaterial(Float k) {
-    auto image = std::make_shared<Image>(Point2i(2, 1));
+    Image image(Point2i(2, 1));
     for (int c = 0; c < 3; ++c) {
-        image->SetChannel(Point2i(0, 0), c, 0);
-        image->SetChannel(Point2i(1, 0), c, k);
+        image.SetChannel(Point2i(0, 0), c, 0);
+        image.SetChannel(Point2i(1, 0), c, k);
     }
     FloatImageTexture ramp;
-    ramp.image = image;
-    ramp.wrapMode = WrapMode::Clamp;
+    ramp.mipmap = std::make_shared<MIPMap>(std::move(image), WrapMode::Clamp, MIPMapFilterOptions{});
     Material m = DiffuseMaterial{};
     m.SetDisplacement(ramp);
     return m;

@@ -80,8 +80,8 @@ TEST(TextureCombine, CheckerboardParityIncludingNegativeCoordinates) {
 
 TEST(TextureCombine, UVMappingScalesThenOffsets) {
     UVMapping m{4, 2, 0.5f, -1};
-    Point2f st = m.Map(AtUV(0.25f, 0.75f));
-    EXPECT_EQ(st, Point2f(1.5f, 0.5f));
+    TexCoord2D c = m.Map(AtUV(0.25f, 0.75f));
+    EXPECT_EQ(c.st, Point2f(1.5f, 0.5f));
     // 4 checks across u in [0, 1): the square changes every quarter.
     FloatTexture board = FloatCheckerboardTexture(UVMapping{4, 4, 0, 0}, FloatTexture(1), FloatTexture(0));
     EXPECT_EQ(board.Evaluate(AtUV(0.1f, 0.1f)), 1);
@@ -142,11 +142,9 @@ class ImageTextures : public testing::Test {
         return path;
     }
 
-    SpectrumImageTexture Texture(const std::string &path, ImageFilter filter, WrapMode wrap) {
+    SpectrumImageTexture Texture(const std::string &path, FilterFunction filter, WrapMode wrap) {
         SpectrumImageTexture t;
-        t.image = ImageTextureCache::Get(path, ColorEncoding::SRGB());
-        t.filter = filter;
-        t.wrapMode = wrap;
+        t.mipmap = ImageTextureCache::GetMIPMap(path, ColorEncoding::SRGB(), wrap, {filter, 8});
         t.type = SpectrumType::Unbounded;
         return t;
     }
@@ -155,7 +153,7 @@ class ImageTextures : public testing::Test {
 };
 
 TEST_F(ImageTextures, PointLookupFlipsTSoThatVZeroIsTheBottomRow) {
-    SpectrumImageTexture t = Texture(WriteQuad(), ImageFilter::Point, WrapMode::Repeat);
+    SpectrumImageTexture t = Texture(WriteQuad(), FilterFunction::Point, WrapMode::Repeat);
     ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.25f), kLambda), U, 0, 0, 1, 0);  // bottom left: blue
     ExpectRGBNear(t.Evaluate(AtUV(0.75f, 0.25f), kLambda), U, 1, 1, 1, 0);  // bottom right: white
     ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.75f), kLambda), U, 1, 0, 0, 0);  // top left: red
@@ -166,7 +164,7 @@ TEST_F(ImageTextures, WrapModesOutsideTheUnitSquare) {
     std::string path = WriteQuad();
     // u = -0.25 lies in the right column's repeat; clamp holds the left column; black is zero.
     auto point = [&](WrapMode wrap, Float u, Float v) {
-        return Texture(path, ImageFilter::Point, wrap).Evaluate(AtUV(u, v), kLambda);
+        return Texture(path, FilterFunction::Point, wrap).Evaluate(AtUV(u, v), kLambda);
     };
     ExpectRGBNear(point(WrapMode::Repeat, -0.25f, 0.75f), U, 0, 1, 0, 0);
     ExpectRGBNear(point(WrapMode::Clamp, -0.25f, 0.75f), U, 1, 0, 0, 0);
@@ -175,7 +173,7 @@ TEST_F(ImageTextures, WrapModesOutsideTheUnitSquare) {
 }
 
 TEST_F(ImageTextures, BilinearBlendsTexelCenters) {
-    SpectrumImageTexture t = Texture(WriteQuad(), ImageFilter::Bilinear, WrapMode::Clamp);
+    SpectrumImageTexture t = Texture(WriteQuad(), FilterFunction::Bilinear, WrapMode::Clamp);
     // The image center is equidistant from the four texels.
     ExpectRGBNear(t.Evaluate(AtUV(0.5f, 0.5f), kLambda), U, 0.5f, 0.5f, 0.5f, 1e-6f);
     // Halfway between the bottom texel centers.
@@ -185,7 +183,7 @@ TEST_F(ImageTextures, BilinearBlendsTexelCenters) {
 }
 
 TEST_F(ImageTextures, ScaleInvertAndReflectanceClamp) {
-    SpectrumImageTexture t = Texture(WriteQuad(), ImageFilter::Point, WrapMode::Repeat);
+    SpectrumImageTexture t = Texture(WriteQuad(), FilterFunction::Point, WrapMode::Repeat);
     t.scale = 3;
     ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.75f), kLambda), U, 3, 0, 0, 0);  // unbounded: as scaled
     t.type = SpectrumType::Albedo;
@@ -195,8 +193,7 @@ TEST_F(ImageTextures, ScaleInvertAndReflectanceClamp) {
     ExpectRGBNear(t.Evaluate(AtUV(0.25f, 0.75f), kLambda), A, 0.5f, 1, 1, 0);  // 1 - 0.5 * red
 
     FloatImageTexture f;
-    f.image = t.image;
-    f.filter = ImageFilter::Point;
+    f.mipmap = t.mipmap;
     EXPECT_NEAR(f.Evaluate(AtUV(0.25f, 0.75f)), 1.f / 3, 1e-6f);  // channel average
     f.scale = 6;
     f.invert = true;

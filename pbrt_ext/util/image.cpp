@@ -184,6 +184,7 @@ Image Image::Read(const std::string &path, ColorEncoding encoding) {
 void Image::KeepBytes(const std::vector<float> &raw, int nChannels, std::array<int, 3> channel,
                       ColorEncoding encoding) {
     // The table holds exactly what decoding each sample would give.
+    byteEncoding = encoding;
     for (int b = 0; b < 256; ++b) toLinear[size_t(b)] = encoding.ToLinear(float(b) / 255);
     size_t n = size_t(resolution.x) * size_t(resolution.y), stride = size_t(nChannels);
     auto sample = [&](size_t i, int c) { return raw[i * stride + size_t(channel[c])]; };

@@ -63,6 +63,14 @@ class ColorEncoding {
         default: return v;
         }
     }
+    // The inverse: a linear value in [0, 1] to its encoded value in [0, 1].
+    PBRT_CPU_GPU Float FromLinear(Float v) const {
+        switch (kind) {
+        case Kind::SRGB: return LinearToSRGB(v);
+        case Kind::Gamma: return std::pow(v, 1 / gamma);
+        default: return v;
+        }
+    }
     // The name Get() accepts, e.g. "gamma 2.2"; also a cache key.
     std::string ToString() const;
     friend bool operator==(const ColorEncoding &a, const ColorEncoding &b) {
@@ -188,6 +196,16 @@ class Image {
     // equal-area parameterization.
     std::vector<Float> GetSamplingDistribution() const;
 
+    // pbrt-v4's resampling (util/imageresample.cpp). FloatResizeUp enlarges the image to
+    // newResolution (no smaller on either axis) with a separable Lanczos filter of radius 2,
+    // reading outside the image through wrapMode and clamping negative results to zero; the
+    // result is float RGB. GeneratePyramid makes the levels of a MIPMap, finest first: the
+    // image resized up to powers of two, then halved by averaging 2x2 texels down to 1x1. Each
+    // level keeps the texel format of the image (an 8-bit image's levels are encoded back to
+    // bytes with its encoding).
+    Image FloatResizeUp(Point2i newResolution, WrapMode2D wrapMode) const;
+    static std::vector<Image> GeneratePyramid(Image image, WrapMode2D wrapMode);
+
     // Integer formats are decoded with encoding; float formats are linear whatever it says.
     static Image Read(const std::string &path, ColorEncoding encoding = ColorEncoding::SRGB());
     void Write(const std::string &path, const ImageMetadata &metadata = {}) const;
@@ -208,12 +226,17 @@ class Image {
     // layout) as this image's bytes, 1 channel where they are gray.
     void KeepBytes(const std::vector<float> &raw, int nChannels, std::array<int, 3> channel,
                    ColorEncoding encoding);
+    // A float image's pixels as bytes of encoding, one channel per pixel or three.
+    Image EncodedAs8Bit(ColorEncoding encoding, int channels) const;
+    // Half the resolution (at least 1): each texel the average of the 2x2 texels it covers.
+    Image HalfResolution() const;
 
     Point2i resolution{0, 0};
     std::vector<Float> pixels;        // float RGB, or empty for an 8-bit image
     std::vector<uint8_t> bytes;       // 8-bit: byteChannels per pixel
     int byteChannels = 0;
     std::array<Float, 256> toLinear{};  // 8-bit: the linear value of each byte
+    ColorEncoding byteEncoding = ColorEncoding::Linear();  // 8-bit: what made toLinear
 };
 
 }  // namespace pbrt

@@ -62,6 +62,21 @@ PBRT_CPU_GPU inline Float Lerp(Float x, Float a, Float b) {
     return (1 - x) * a + x * b;
 }
 
+// sin(x)/x, exact at 0 and to float precision near it (the Taylor series to x^2).
+PBRT_CPU_GPU inline Float SinXOverX(Float x) {
+    if (1 - x * x == 1) return 1;
+    return std::sin(x) / x;
+}
+// The normalized sinc, sin(pi x)/(pi x).
+PBRT_CPU_GPU inline Float Sinc(Float x) {
+    return SinXOverX(Pi * x);
+}
+// A sinc windowed by a sinc of period tau (the Lanczos window), zero beyond radius.
+PBRT_CPU_GPU inline Float WindowedSinc(Float x, Float radius, Float tau) {
+    if (std::abs(x) > radius) return 0;
+    return Sinc(x) * Sinc(x / tau);
+}
+
 PBRT_CPU_GPU constexpr Float Radians(Float deg) {
     return (Pi / 180) * deg;
 }
