@@ -394,7 +394,11 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
          ":3:1: error: cylinder \"zmin\" 1 and \"zmax\" 1: expected two different finite heights"},
         {"load_loopsubdiv_levels.pbrt",
          ":3:20: error: loopsubdiv \"levels\" is -1; expected 0 or more"},
-        {"load_corrupt_nvdb.pbrt", ":3:49: error: "}};
+        {"load_corrupt_nvdb.pbrt", ":3:49: error: "},
+        // Texture filtering.
+        {"load_texture_filter.pbrt",
+         ":3:71: error: unknown texture filter \"lanczos\": expected point, bilinear, trilinear or ewa"},
+        {"load_texture_maxanisotropy.pbrt", ":3:72: error: \"maxanisotropy\" must be at least 1"}};
     for (auto [name, expected] : cases) {
         std::string file = std::string(PBRT_EXT_TEST_DATA_DIR) + "/bad/" + name;
         std::string error = LoadError(file);
