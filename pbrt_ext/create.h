@@ -67,6 +67,10 @@ class TextureResolver {
     bool ReadsFootprint() const { return readsFootprint; }
 
   private:
+    // The texture an entity describes; its named inputs through Float and GetSpectrumTexture.
+    FloatTexture MakeFloat(const TransformedSceneEntity &entity);
+    SpectrumTexture MakeSpectrum(const TransformedSceneEntity &entity, SpectrumType type);
+
     struct Cache;
     const SceneDescription &scene;
     std::string folder;

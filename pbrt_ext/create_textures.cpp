@@ -1,5 +1,6 @@
 // Textures from scene-file entities, created on first reference (pbrt-v4's texture classes and
-// parameters: constant, scale, mix, checkerboard, imagemap; others warn and become constant).
+// parameters, their mappings in the CTM of the Texture directive). "ptex" warns and becomes a
+// constant 0.5: Debian packages no Ptex library.
 #include "pbrt_ext/create.h"
 
 #include "pbrt_ext/util/error.h"
@@ -21,14 +22,57 @@ TextureResolver::~TextureResolver() = default;
 
 namespace {
 
-UVMapping GetMapping(const TransformedSceneEntity &e) {
+// Where a parameter was written, or the directive when it was not.
+const FileLoc &LocOf(const TransformedSceneEntity &e, const std::string &name) {
+    const FileLoc *loc = e.parameters.Loc(name);
+    return loc ? *loc : e.loc;
+}
+
+TextureMapping2D GetMapping(const TransformedSceneEntity &e) {
     const ParameterDictionary &p = e.parameters;
     std::string mapping = p.GetOneString("mapping", "uv");
-    if (mapping != "uv")
-        WarningAt(*p.Loc("mapping"), "texture mapping \"%s\" is not supported: using \"uv\"",
-                  mapping.c_str());
-    return UVMapping{p.GetOneFloat("uscale", 1), p.GetOneFloat("vscale", 1),
-                     p.GetOneFloat("udelta", 0), p.GetOneFloat("vdelta", 0)};
+    if (mapping == "uv")
+        return UVMapping{p.GetOneFloat("uscale", 1), p.GetOneFloat("vscale", 1),
+                         p.GetOneFloat("udelta", 0), p.GetOneFloat("vdelta", 0)};
+    if (mapping == "spherical") return SphericalMapping{e.worldFromObject};
+    if (mapping == "cylindrical") return CylindricalMapping{e.worldFromObject};
+    if (mapping == "planar")
+        return PlanarMapping{e.worldFromObject, p.GetOneVector3f("v1", Vector3f(1, 0, 0)),
+                             p.GetOneVector3f("v2", Vector3f(0, 1, 0)), p.GetOneFloat("udelta", 0),
+                             p.GetOneFloat("vdelta", 0)};
+    throw ParseError(LocOf(e, "mapping"), "unknown texture mapping \"" + mapping +
+                                              "\": expected uv, spherical, cylindrical or planar");
+}
+
+// A checkerboard's mapping: 2D by default, texture space for "dimension" 3.
+std::variant<TextureMapping2D, TextureMapping3D> GetCheckerboardMapping(const TransformedSceneEntity &e) {
+    int dimension = e.parameters.GetOneInt("dimension", 2);
+    if (dimension == 3) return TextureMapping3D{e.worldFromObject};
+    if (dimension != 2)
+        throw ParseError(LocOf(e, "dimension"), "checkerboard \"dimension\" is " +
+                                                    std::to_string(dimension) + "; expected 2 or 3");
+    return GetMapping(e);
+}
+
+// "octaves" of noise, at least 0 (pbrt-v4 sums none for fewer).
+int GetOctaves(const TransformedSceneEntity &e) {
+    int octaves = e.parameters.GetOneInt("octaves", 8);
+    if (octaves < 0 || octaves > 64)
+        throw ParseError(LocOf(e, "octaves"), "\"octaves\" is " + std::to_string(octaves) +
+                                                  "; expected 0 to 64");
+    return octaves;
+}
+
+// The unit vector "dir" in world space.
+Vector3f GetDirection(const TransformedSceneEntity &e) {
+    Vector3f dir = e.worldFromObject(e.parameters.GetOneVector3f("dir", Vector3f(0, 1, 0)));
+    if (!(LengthSquared(dir) > 0) || !IsFinite(LengthSquared(dir)))
+        throw ParseError(LocOf(e, "dir"), "directionmix \"dir\" must be a finite nonzero vector");
+    return Normalize(dir);
+}
+
+[[noreturn]] void UnknownTexture(const TransformedSceneEntity &e, const char *kind, const char *expected) {
+    throw ParseError(e.loc, std::string("unknown ") + kind + " texture \"" + e.name + "\": expected " + expected);
 }
 
 // pbrt-v4's imagemap parameters, for both value types.
@@ -81,8 +125,15 @@ FloatTexture TextureResolver::Float(const ParameterDictionary &p, const std::str
     auto entity = scene.floatTextures.find(texture);
     if (entity == scene.floatTextures.end())
         throw ParseError(*p.Loc(name), "float texture \"" + texture + "\" is not defined");
-    const TransformedSceneEntity &e = entity->second;
+    return cache->floats.emplace(texture, MakeFloat(entity->second)).first->second;
+}
+
+FloatTexture TextureResolver::MakeFloat(const TransformedSceneEntity &e) {
     const ParameterDictionary &tp = e.parameters;
+    // The textures that read the pixel's footprint: the scene then needs ray differentials.
+    bool filtered = e.name == "checkerboard" || e.name == "imagemap" || e.name == "fbm" ||
+                    e.name == "wrinkled" || e.name == "windy";
+    readsFootprint |= filtered;
     FloatTexture result;
     if (e.name == "constant") {
         result = FloatTexture(tp.GetOneFloat("value", 1));
@@ -90,19 +141,32 @@ FloatTexture TextureResolver::Float(const ParameterDictionary &p, const std::str
         result = FloatScaledTexture(Float(tp, "tex", 1), Float(tp, "scale", 1));
     } else if (e.name == "mix") {
         result = FloatMixTexture(Float(tp, "tex1", 0), Float(tp, "tex2", 1), Float(tp, "amount", 0.5f));
+    } else if (e.name == "directionmix") {
+        result = FloatDirectionMixTexture(Float(tp, "tex1", 0), Float(tp, "tex2", 1), GetDirection(e));
     } else if (e.name == "checkerboard") {
-        result = FloatCheckerboardTexture(GetMapping(e), Float(tp, "tex1", 1), Float(tp, "tex2", 0));
-        readsFootprint = true;
-        tp.GetOneInt("dimension", 2);
+        result = FloatCheckerboardTexture(GetCheckerboardMapping(e), Float(tp, "tex1", 1), Float(tp, "tex2", 0));
+    } else if (e.name == "dots") {
+        result = FloatDotsTexture(GetMapping(e), Float(tp, "outside", 0), Float(tp, "inside", 1));
+    } else if (e.name == "bilerp") {
+        result = FloatBilerpTexture{GetMapping(e), tp.GetOneFloat("v00", 0), tp.GetOneFloat("v01", 1),
+                                    tp.GetOneFloat("v10", 0), tp.GetOneFloat("v11", 1)};
     } else if (e.name == "imagemap") {
         result = CreateImageTexture<FloatImageTexture>(e, folder);
-        readsFootprint = true;
+    } else if (e.name == "fbm") {
+        result = FBmTexture{TextureMapping3D{e.worldFromObject}, GetOctaves(e), tp.GetOneFloat("roughness", .5f)};
+    } else if (e.name == "wrinkled") {
+        result = WrinkledTexture{TextureMapping3D{e.worldFromObject}, GetOctaves(e), tp.GetOneFloat("roughness", .5f)};
+    } else if (e.name == "windy") {
+        result = WindyTexture{TextureMapping3D{e.worldFromObject}};
+    } else if (e.name == "ptex") {
+        WarningAt(e.loc, "texture \"ptex\" is not supported (Debian packages no Ptex library): constant 0.5");
+        return FloatTexture(0.5f);
     } else {
-        WarningAt(e.loc, "texture \"%s\" is not supported: constant 0.5", e.name.c_str());
-        return cache->floats.emplace(texture, FloatTexture(0.5f)).first->second;
+        UnknownTexture(e, "float", "constant, scale, mix, directionmix, checkerboard, dots, bilerp, "
+                                   "imagemap, fbm, wrinkled, windy or ptex");
     }
     tp.ReportUnused();
-    return cache->floats.emplace(texture, std::move(result)).first->second;
+    return result;
 }
 
 SpectrumTexture TextureResolver::GetSpectrumTexture(const ParameterDictionary &p,
@@ -116,33 +180,51 @@ SpectrumTexture TextureResolver::GetSpectrumTexture(const ParameterDictionary &p
     auto entity = scene.spectrumTextures.find(texture);
     if (entity == scene.spectrumTextures.end())
         throw ParseError(*p.Loc(name), "spectrum texture \"" + texture + "\" is not defined");
-    const TransformedSceneEntity &e = entity->second;
+    return cache->spectra.emplace(texture, MakeSpectrum(entity->second, type)).first->second;
+}
+
+SpectrumTexture TextureResolver::MakeSpectrum(const TransformedSceneEntity &e, SpectrumType type) {
     const ParameterDictionary &tp = e.parameters;
-    SpectrumTexture result;
+    bool filtered = e.name == "checkerboard" || e.name == "imagemap" || e.name == "marble";
+    readsFootprint |= filtered;
     const pbrt::Spectrum one(1.f), zero(0.f);
+    auto spectrum = [&](const char *name, const pbrt::Spectrum &def) {
+        return GetSpectrumTexture(tp, name, def, type);
+    };
+    SpectrumTexture result;
     if (e.name == "constant") {
         result = SpectrumTexture(GetSpectrum(tp, "value", one, type, folder));
     } else if (e.name == "scale") {
-        result = SpectrumScaledTexture(GetSpectrumTexture(tp, "tex", one, type), Float(tp, "scale", 1));
+        result = SpectrumScaledTexture(spectrum("tex", one), Float(tp, "scale", 1));
     } else if (e.name == "mix") {
-        result = SpectrumMixTexture(GetSpectrumTexture(tp, "tex1", zero, type),
-                                    GetSpectrumTexture(tp, "tex2", one, type), Float(tp, "amount", 0.5f));
+        result = SpectrumMixTexture(spectrum("tex1", zero), spectrum("tex2", one), Float(tp, "amount", 0.5f));
+    } else if (e.name == "directionmix") {
+        result = SpectrumDirectionMixTexture(spectrum("tex1", zero), spectrum("tex2", one), GetDirection(e));
     } else if (e.name == "checkerboard") {
-        result = SpectrumCheckerboardTexture(GetMapping(e), GetSpectrumTexture(tp, "tex1", one, type),
-                                             GetSpectrumTexture(tp, "tex2", zero, type));
-        readsFootprint = true;
-        tp.GetOneInt("dimension", 2);
+        result = SpectrumCheckerboardTexture(GetCheckerboardMapping(e), spectrum("tex1", one), spectrum("tex2", zero));
+    } else if (e.name == "dots") {
+        result = SpectrumDotsTexture(GetMapping(e), spectrum("outside", zero), spectrum("inside", one));
+    } else if (e.name == "bilerp") {
+        result = SpectrumBilerpTexture{GetMapping(e), GetSpectrum(tp, "v00", zero, type, folder),
+                                       GetSpectrum(tp, "v01", one, type, folder),
+                                       GetSpectrum(tp, "v10", zero, type, folder),
+                                       GetSpectrum(tp, "v11", one, type, folder)};
     } else if (e.name == "imagemap") {
         SpectrumImageTexture t = CreateImageTexture<SpectrumImageTexture>(e, folder);
         t.type = type;
         result = std::move(t);
-        readsFootprint = true;
+    } else if (e.name == "marble") {
+        result = MarbleTexture{TextureMapping3D{e.worldFromObject}, GetOctaves(e), tp.GetOneFloat("roughness", .5f),
+                               tp.GetOneFloat("scale", 1), tp.GetOneFloat("variation", .2f)};
+    } else if (e.name == "ptex") {
+        WarningAt(e.loc, "texture \"ptex\" is not supported (Debian packages no Ptex library): constant 0.5");
+        return SpectrumTexture(pbrt::Spectrum(0.5f));
     } else {
-        WarningAt(e.loc, "texture \"%s\" is not supported: constant 0.5", e.name.c_str());
-        return cache->spectra.emplace(texture, SpectrumTexture(pbrt::Spectrum(0.5f))).first->second;
+        UnknownTexture(e, "spectrum", "constant, scale, mix, directionmix, checkerboard, dots, bilerp, "
+                                      "imagemap, marble or ptex");
     }
     tp.ReportUnused();
-    return cache->spectra.emplace(texture, std::move(result)).first->second;
+    return result;
 }
 
 }  // namespace pbrt

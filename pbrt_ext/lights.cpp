@@ -14,14 +14,6 @@ namespace pbrt {
 
 namespace {
 
-// pbrt-v4's SmoothStep: 0 below a, 1 above b, a C1 cubic between.
-Float SmoothStep(Float x, Float a, Float b) {
-    if (a == b)
-        return x < a ? 0 : 1;
-    Float t = Clamp((x - a) / (b - a), 0, 1);
-    return t * t * (3 - 2 * t);
-}
-
 std::string Format(Vector3f v) {
     char buf[96];
     std::snprintf(buf, sizeof(buf), "[ %g, %g, %g ]", v.x, v.y, v.z);

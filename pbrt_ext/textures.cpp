@@ -11,22 +11,38 @@
 
 namespace pbrt {
 
-Float Checkerboard(const UVMapping &mapping, const TextureEvalContext &ctx) {
-    // d is the second antiderivative of the 1D checks (+1 on even squares, -1 on odd ones), so
-    // that the second difference of d over [x - r, x + r] is their integral against a tent of
-    // radius r.
-    auto d = [](Float x) {
-        Float y = x / 2 - std::floor(x / 2) - 0.5f;
-        return x / 2 + y * (1 - 2 * std::abs(y));
+namespace {
+
+// The 1D checks (+1 on even squares, -1 on odd ones) integrated against a tent of radius r
+// around x. d is their second antiderivative, so that the tent's integral is the second
+// difference of d over [x - r, x + r].
+Float FilteredChecks(Float x, Float r) {
+    if (std::floor(x - r) == std::floor(x + r)) return 1 - 2 * (int(std::floor(x)) & 1);
+    auto d = [](Float v) {
+        Float y = v / 2 - std::floor(v / 2) - 0.5f;
+        return v / 2 + y * (1 - 2 * std::abs(y));
     };
-    auto filtered = [&](Float x, Float r) -> Float {
-        if (std::floor(x - r) == std::floor(x + r)) return 1 - 2 * (int(std::floor(x)) & 1);
-        return (d(x + r) - 2 * d(x) + d(x - r)) / Sqr(r);
-    };
+    return (d(x + r) - 2 * d(x) + d(x - r)) / Sqr(r);
+}
+
+// The tent's radius on one axis: 1.5 times the footprint's larger extent along it.
+Float TentRadius(Float dx, Float dy) {
+    return 1.5f * std::max(std::abs(dx), std::abs(dy));
+}
+
+}  // namespace
+
+Float Checkerboard(const TextureMapping2D &mapping, const TextureEvalContext &ctx) {
     TexCoord2D c = mapping.Map(ctx);
-    Float ds = 1.5f * std::max(std::abs(c.dsdx), std::abs(c.dsdy));
-    Float dt = 1.5f * std::max(std::abs(c.dtdx), std::abs(c.dtdy));
-    return 0.5f - filtered(c.st[0], ds) * filtered(c.st[1], dt) / 2;
+    return 0.5f - FilteredChecks(c.st[0], TentRadius(c.dsdx, c.dsdy)) *
+                      FilteredChecks(c.st[1], TentRadius(c.dtdx, c.dtdy)) / 2;
+}
+
+Float Checkerboard(const TextureMapping3D &mapping, const TextureEvalContext &ctx) {
+    TexCoord3D c = mapping.Map(ctx);
+    Float product = 1;
+    for (int i = 0; i < 3; ++i) product *= FilteredChecks(c.p[i], TentRadius(c.dpdx[i], c.dpdy[i]));
+    return 0.5f - product / 2;
 }
 
 RGB ImageTextureBase::ScaledLookup(const TextureEvalContext &ctx) const {

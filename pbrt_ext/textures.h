@@ -10,11 +10,11 @@
 // Image textures are filtered over the pixel's footprint by a MIPMap (util/mipmap.h), and the
 // checkerboard is box filtered over it as pbrt-v4 does; the footprint comes from the ray
 // differentials of the hit (zero where the scene needs none: then the finest level is read).
-// The only 2D mapping is pbrt-v4's "uv" one.
 #pragma once
 
-#include "pbrt_ext/interaction.h"
+#include "pbrt_ext/proceduraltextures.h"
 #include "pbrt_ext/spectrum.h"
+#include "pbrt_ext/texturemappings.h"
 #include "pbrt_ext/util/image.h"
 #include "pbrt_ext/util/mipmap.h"
 #include "pbrt_ext/util/spectrum.h"
@@ -25,34 +25,6 @@
 #include <variant>
 
 namespace pbrt {
-
-// What a texture may read at a shading point.
-struct TextureEvalContext {
-    TextureEvalContext() = default;
-    explicit TextureEvalContext(const SurfaceInteraction &si)
-        : p(si.p), dpdx(si.dpdx), dpdy(si.dpdy), n(si.n), uv(si.uv), dudx(si.dudx),
-          dudy(si.dudy), dvdx(si.dvdx), dvdy(si.dvdy) {}
-    Point3f p;
-    Vector3f dpdx, dpdy;  // the pixel's footprint (ray differentials), zero where unknown
-    Normal3f n;
-    Point2f uv;
-    Float dudx = 0, dudy = 0, dvdx = 0, dvdy = 0;
-};
-
-// Texture coordinates and their derivatives along the pixel's x and y.
-struct TexCoord2D {
-    Point2f st;
-    Float dsdx = 0, dsdy = 0, dtdx = 0, dtdy = 0;
-};
-
-// pbrt-v4's UVMapping: (s, t) = (su u + du, sv v + dv).
-struct UVMapping {
-    Float su = 1, sv = 1, du = 0, dv = 0;
-    TexCoord2D Map(const TextureEvalContext &ctx) const {
-        return TexCoord2D{Point2f(su * ctx.uv[0] + du, sv * ctx.uv[1] + dv), su * ctx.dudx,
-                          su * ctx.dudy, sv * ctx.dvdx, sv * ctx.dvdy};
-    }
-};
 
 class FloatTexture;
 class SpectrumTexture;
@@ -97,14 +69,36 @@ struct MixTexture {
     std::shared_ptr<const FloatTexture> amount;
 };
 
-// tex1 on the squares of (s, t) whose integer coordinates have an even sum, tex2 on the others.
+// tex1 on the squares of (s, t) (or cubes of texture space) whose integer coordinates have an
+// even sum, tex2 on the others.
 template <typename Tex>
 struct CheckerboardTexture {
-    CheckerboardTexture(UVMapping mapping, Tex tex1, Tex tex2);
+    using Mapping = std::variant<TextureMapping2D, TextureMapping3D>;
+    CheckerboardTexture(Mapping mapping, Tex tex1, Tex tex2);
     template <typename... Lambda>
     auto Evaluate(const TextureEvalContext &ctx, const Lambda &...lambda) const;
-    UVMapping mapping;
+    Mapping mapping;
     std::shared_ptr<const Tex> tex1, tex2;
+};
+
+// inside within pbrt-v4's polka dots (InsidePolkaDot), outside elsewhere.
+template <typename Tex>
+struct DotsTexture {
+    DotsTexture(TextureMapping2D mapping, Tex outside, Tex inside);
+    template <typename... Lambda>
+    auto Evaluate(const TextureEvalContext &ctx, const Lambda &...lambda) const;
+    TextureMapping2D mapping;
+    std::shared_ptr<const Tex> outside, inside;
+};
+
+// |n . dir| tex1 + (1 - |n . dir|) tex2: tex1 where the surface faces along dir (a unit vector).
+template <typename Tex>
+struct DirectionMixTexture {
+    DirectionMixTexture(Tex tex1, Tex tex2, Vector3f dir);
+    template <typename... Lambda>
+    auto Evaluate(const TextureEvalContext &ctx, const Lambda &...lambda) const;
+    std::shared_ptr<const Tex> tex1, tex2;
+    Vector3f dir;
 };
 
 }  // namespace detail
@@ -115,18 +109,23 @@ using FloatMixTexture = detail::MixTexture<FloatTexture>;
 using SpectrumMixTexture = detail::MixTexture<SpectrumTexture>;
 using FloatCheckerboardTexture = detail::CheckerboardTexture<FloatTexture>;
 using SpectrumCheckerboardTexture = detail::CheckerboardTexture<SpectrumTexture>;
+using FloatDotsTexture = detail::DotsTexture<FloatTexture>;
+using SpectrumDotsTexture = detail::DotsTexture<SpectrumTexture>;
+using FloatDirectionMixTexture = detail::DirectionMixTexture<FloatTexture>;
+using SpectrumDirectionMixTexture = detail::DirectionMixTexture<SpectrumTexture>;
 
 // The weight of tex2 in CheckerboardTexture: 0 on the squares where it shows tex1, 1 on the
 // others, and between them where the pixel's footprint covers both (pbrt-v4's Checkerboard: the
 // checks integrated against a filter 1.5 times the footprint's widest extent on each axis).
-Float Checkerboard(const UVMapping &mapping, const TextureEvalContext &ctx);
+Float Checkerboard(const TextureMapping2D &mapping, const TextureEvalContext &ctx);
+Float Checkerboard(const TextureMapping3D &mapping, const TextureEvalContext &ctx);
 
 // ---- Image maps -------------------------------------------------------------------------------
 
 // What pbrt-v4's ImageTextureBase holds. The pyramid is built once per file, encoding, wrap
 // mode and filter, and shared by every texture that reads it (ImageTextureCache).
 struct ImageTextureBase {
-    UVMapping mapping;
+    TextureMapping2D mapping;
     std::shared_ptr<const MIPMap> mipmap;
     Float scale = 1;
     bool invert = false;
@@ -170,7 +169,9 @@ pstd::optional<WrapMode> ParseWrapMode(const std::string &name);
 class FloatTexture {
   public:
     using Variant = std::variant<FloatConstantTexture, FloatScaledTexture, FloatMixTexture,
-                                 FloatCheckerboardTexture, FloatImageTexture>;
+                                 FloatCheckerboardTexture, FloatImageTexture, FloatDotsTexture,
+                                 FloatDirectionMixTexture, FloatBilerpTexture, FBmTexture,
+                                 WrinkledTexture, WindyTexture>;
     FloatTexture(Float value = 0) : texture(FloatConstantTexture{value}) {}
     template <typename T>
         requires std::is_constructible_v<Variant, T>
@@ -186,7 +187,9 @@ class FloatTexture {
 class SpectrumTexture {
   public:
     using Variant = std::variant<SpectrumConstantTexture, SpectrumScaledTexture, SpectrumMixTexture,
-                                 SpectrumCheckerboardTexture, SpectrumImageTexture>;
+                                 SpectrumCheckerboardTexture, SpectrumImageTexture,
+                                 SpectrumDotsTexture, SpectrumDirectionMixTexture,
+                                 SpectrumBilerpTexture, MarbleTexture>;
     SpectrumTexture(Spectrum value = Spectrum(0.f)) : texture(SpectrumConstantTexture{std::move(value)}) {}
     template <typename T>
         requires std::is_constructible_v<Variant, T>
@@ -238,15 +241,40 @@ auto MixTexture<Tex>::Evaluate(const TextureEvalContext &ctx, const Lambda &...l
 }
 
 template <typename Tex>
-CheckerboardTexture<Tex>::CheckerboardTexture(UVMapping mapping, Tex tex1, Tex tex2)
-    : mapping(mapping),
+CheckerboardTexture<Tex>::CheckerboardTexture(Mapping mapping, Tex tex1, Tex tex2)
+    : mapping(std::move(mapping)),
       tex1(std::make_shared<const Tex>(std::move(tex1))),
       tex2(std::make_shared<const Tex>(std::move(tex2))) {}
 
 template <typename Tex>
 template <typename... Lambda>
 auto CheckerboardTexture<Tex>::Evaluate(const TextureEvalContext &ctx, const Lambda &...lambda) const {
-    return Blend(Checkerboard(mapping, ctx), *tex1, *tex2, ctx, lambda...);
+    Float w = std::visit([&](const auto &m) { return Checkerboard(m, ctx); }, mapping);
+    return Blend(w, *tex1, *tex2, ctx, lambda...);
+}
+
+template <typename Tex>
+DotsTexture<Tex>::DotsTexture(TextureMapping2D mapping, Tex outside, Tex inside)
+    : mapping(std::move(mapping)),
+      outside(std::make_shared<const Tex>(std::move(outside))),
+      inside(std::make_shared<const Tex>(std::move(inside))) {}
+
+template <typename Tex>
+template <typename... Lambda>
+auto DotsTexture<Tex>::Evaluate(const TextureEvalContext &ctx, const Lambda &...lambda) const {
+    return InsidePolkaDot(mapping.Map(ctx).st) ? inside->Evaluate(ctx, lambda...)
+                                                : outside->Evaluate(ctx, lambda...);
+}
+
+template <typename Tex>
+DirectionMixTexture<Tex>::DirectionMixTexture(Tex tex1, Tex tex2, Vector3f dir)
+    : tex1(std::make_shared<const Tex>(std::move(tex1))),
+      tex2(std::make_shared<const Tex>(std::move(tex2))), dir(dir) {}
+
+template <typename Tex>
+template <typename... Lambda>
+auto DirectionMixTexture<Tex>::Evaluate(const TextureEvalContext &ctx, const Lambda &...lambda) const {
+    return Blend(1 - AbsDot(ctx.n, dir), *tex1, *tex2, ctx, lambda...);
 }
 
 }  // namespace detail

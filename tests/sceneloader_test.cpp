@@ -398,7 +398,11 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
         // Texture filtering.
         {"load_texture_filter.pbrt",
          ":3:71: error: unknown texture filter \"lanczos\": expected point, bilinear, trilinear or ewa"},
-        {"load_texture_maxanisotropy.pbrt", ":3:72: error: \"maxanisotropy\" must be at least 1"}};
+        {"load_texture_maxanisotropy.pbrt", ":3:72: error: \"maxanisotropy\" must be at least 1"},
+        {"load_texture_mapping.pbrt",
+         ":3:39: error: unknown texture mapping \"cubic\": expected uv, spherical, cylindrical or planar"},
+        {"load_texture_type.pbrt", ":3:1: error: unknown float texture \"marble\": expected constant, "},
+        {"load_checkerboard_dimension.pbrt", ":3:39: error: checkerboard \"dimension\" is 4; expected 2 or 3"}};
     for (auto [name, expected] : cases) {
         std::string file = std::string(PBRT_EXT_TEST_DATA_DIR) + "/bad/" + name;
         std::string error = LoadError(file);

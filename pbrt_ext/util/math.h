@@ -77,6 +77,13 @@ PBRT_CPU_GPU inline Float WindowedSinc(Float x, Float radius, Float tau) {
     return Sinc(x) * Sinc(x / tau);
 }
 
+// 0 below a, 1 above b, and the cubic 3t^2 - 2t^3 of t = (x - a) / (b - a) between.
+PBRT_CPU_GPU inline Float SmoothStep(Float x, Float a, Float b) {
+    if (a == b) return (x < a) ? 0 : 1;
+    Float t = Clamp((x - a) / (b - a), 0, 1);
+    return t * t * (3 - 2 * t);
+}
+
 PBRT_CPU_GPU constexpr Float Radians(Float deg) {
     return (Pi / 180) * deg;
 }

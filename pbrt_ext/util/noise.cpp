@@ -2,8 +2,8 @@
 
 #include "pbrt_ext/util/math.h"
 
+#include <algorithm>
 #include <array>
-
 #include <cmath>
 
 namespace pbrt {
@@ -98,6 +98,49 @@ Vector3f DNoise(Point3f p) {
     return Vector3f(Noise(p + Vector3f(delta, 0, 0)) - n, Noise(p + Vector3f(0, delta, 0)) - n,
                     Noise(p + Vector3f(0, 0, delta)) - n) /
            delta;
+}
+
+namespace {
+
+// How many octaves of noise the footprint resolves: none finer than half its larger side, at
+// most maxOctaves (pbrt-v4's band limit for FBm and Turbulence).
+Float ResolvedOctaves(Vector3f dpdx, Vector3f dpdy, int maxOctaves) {
+    Float len2 = std::max(LengthSquared(dpdx), LengthSquared(dpdy));
+    return Clamp(-1 - std::log2(len2) / 2, 0, maxOctaves);
+}
+
+}  // namespace
+
+Float FBm(Point3f p, Vector3f dpdx, Vector3f dpdy, Float omega, int maxOctaves) {
+    Float n = ResolvedOctaves(dpdx, dpdy, maxOctaves);
+    int nInt = int(std::floor(n));
+    Float sum = 0, lambda = 1, o = 1;
+    for (int i = 0; i < nInt; ++i) {
+        sum += o * Noise(lambda * p);
+        lambda *= 1.99f;
+        o *= omega;
+    }
+    // The partly resolved octave fades in.
+    return sum + o * SmoothStep(n - Float(nInt), .3f, .7f) * Noise(lambda * p);
+}
+
+Float Turbulence(Point3f p, Vector3f dpdx, Vector3f dpdy, Float omega, int maxOctaves) {
+    Float n = ResolvedOctaves(dpdx, dpdy, maxOctaves);
+    int nInt = int(std::floor(n));
+    Float sum = 0, lambda = 1, o = 1;
+    for (int i = 0; i < nInt; ++i) {
+        sum += o * std::abs(Noise(lambda * p));
+        lambda *= 1.99f;
+        o *= omega;
+    }
+    // Unresolved octaves contribute their average |noise|, about 0.2; the partly resolved one
+    // blends toward its value.
+    sum += o * Lerp(SmoothStep(n - Float(nInt), .3f, .7f), 0.2f, std::abs(Noise(lambda * p)));
+    for (int i = nInt; i < maxOctaves; ++i) {
+        sum += o * 0.2f;
+        o *= omega;
+    }
+    return sum;
 }
 
 }  // namespace pbrt

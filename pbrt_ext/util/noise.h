@@ -16,4 +16,10 @@ inline Float Noise(Point3f p) { return Noise(p.x, p.y, p.z); }
 // The gradient of Noise by forward differences of 0.01 (pbrt-v4's DNoise).
 Vector3f DNoise(Point3f p);
 
+// Fractional Brownian motion: octaves of Noise at frequencies 1.99^i and weights omega^i, as
+// many as the footprint (dpdx, dpdy) resolves, at most maxOctaves (pbrt-v4's FBm).
+Float FBm(Point3f p, Vector3f dpdx, Vector3f dpdy, Float omega, int maxOctaves);
+// The same sum of |Noise| (pbrt-v4's Turbulence), unresolved octaves at their mean 0.2.
+Float Turbulence(Point3f p, Vector3f dpdx, Vector3f dpdy, Float omega, int maxOctaves);
+
 }  // namespace pbrt
