@@ -146,7 +146,9 @@ FloatTexture TextureResolver::MakeFloat(const TransformedSceneEntity &e) {
     } else if (e.name == "checkerboard") {
         result = FloatCheckerboardTexture(GetCheckerboardMapping(e), Float(tp, "tex1", 1), Float(tp, "tex2", 0));
     } else if (e.name == "dots") {
-        result = FloatDotsTexture(GetMapping(e), Float(tp, "outside", 0), Float(tp, "inside", 1));
+        // pbrt (v2 to v4) hands "inside" to the area around the dots and "outside" to the dots;
+        // scenes are written for that.
+        result = FloatDotsTexture(GetMapping(e), Float(tp, "inside", 1), Float(tp, "outside", 0));
     } else if (e.name == "bilerp") {
         result = FloatBilerpTexture{GetMapping(e), tp.GetOneFloat("v00", 0), tp.GetOneFloat("v01", 1),
                                     tp.GetOneFloat("v10", 0), tp.GetOneFloat("v11", 1)};
@@ -203,7 +205,7 @@ SpectrumTexture TextureResolver::MakeSpectrum(const TransformedSceneEntity &e, S
     } else if (e.name == "checkerboard") {
         result = SpectrumCheckerboardTexture(GetCheckerboardMapping(e), spectrum("tex1", one), spectrum("tex2", zero));
     } else if (e.name == "dots") {
-        result = SpectrumDotsTexture(GetMapping(e), spectrum("outside", zero), spectrum("inside", one));
+        result = SpectrumDotsTexture(GetMapping(e), spectrum("inside", one), spectrum("outside", zero));  // as above
     } else if (e.name == "bilerp") {
         result = SpectrumBilerpTexture{GetMapping(e), GetSpectrum(tp, "v00", zero, type, folder),
                                        GetSpectrum(tp, "v01", one, type, folder),

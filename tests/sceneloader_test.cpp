@@ -102,7 +102,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                          "media-nanovdb-smoke.pbrt", "media-fabric-fog.pbrt",
                                          "subdivision.pbrt", "cylinders.pbrt",
                                          "motion-blur.pbrt", "fabric-woven.pbrt",
-                                         "hair-fur.pbrt"));
+                                         "hair-fur.pbrt", "fabric-textured.pbrt",
+                                         "procedural-textures.pbrt"));
 
 // Curves of each type with hair, a moving cylinder, a moving spherical camera, a bump map (ray
 // differentials), tangents S and a subdivision surface, all in one scene (also a fuzz seed).
