@@ -102,33 +102,6 @@ TEST(NamedSpectra, GlassBK7AtTheFraunhoferLines) {
     EXPECT_FALSE(bk7->IsConstant());
 }
 
-// Gold's eta and k at the tabulated wavelengths of data/spectra/metal-Au.nk (Johnson and Christy
-// 1972) are the file's values, to float rounding of the wavelengths.
-TEST(NamedSpectra, GoldAgainstItsSourceData) {
-    pstd::optional<Spectrum> eta = GetNamedSpectrum("metal-Au-eta"), k = GetNamedSpectrum("metal-Au-k");
-    ASSERT_TRUE(eta && k);
-    struct Row {
-        Float lambda, n, k;
-    };
-    std::ifstream in(std::string(PBRT_EXT_TEST_DATA_DIR) + "/../../data/spectra/metal-Au.nk");
-    ASSERT_TRUE(in.is_open());
-    std::vector<Row> rows;
-    std::string line;
-    while (std::getline(in, line)) {
-        std::istringstream fields(line);
-        Row r;
-        if (line.empty() || line[0] == '#' || !(fields >> r.lambda >> r.n >> r.k)) continue;
-        rows.push_back(r);
-    }
-    ASSERT_GT(rows.size(), 10u);
-    for (size_t i = 0; i + 1 < rows.size(); ++i) {
-        Float lambda = rows[i].lambda * 1000;  // the file is in micrometres
-        if (lambda < Lambda_min || lambda > Lambda_max) continue;
-        EXPECT_NEAR((*eta)(lambda), rows[i].n, 1e-4f * rows[i].n) << lambda;
-        EXPECT_NEAR((*k)(lambda), rows[i].k, 1e-4f * rows[i].k) << lambda;
-    }
-}
-
 // RGB spectra: an albedo's values stay in [0, 1]; an unbounded spectrum scales with its RGB; an
 // illuminant [1 1 1] is the colour space's illuminant; grey is flat.
 TEST(RGBSpectra, AlbedoUnboundedIlluminant) {
