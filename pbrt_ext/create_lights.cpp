@@ -91,6 +91,71 @@ Light CreateInfiniteLight(const TransformedSceneEntity &e, Float scale,
     return ImageInfiniteLight(e.worldFromObject, Image::Read(path), scale, &cs);
 }
 
+// A goniometric or projection light's image: "filename" is required; pixels must be finite.
+Image ReadLightImage(const TransformedSceneEntity &e, const std::string &folder) {
+    const ParameterDictionary &p = e.parameters;
+    std::string filename = p.GetOneString("filename", "");
+    if (filename.empty())
+        throw ParseError(e.loc, "LightSource \"" + e.name + "\" needs \"string filename\"");
+    std::string path = ResolvePath(folder, filename);
+    if (!std::filesystem::is_regular_file(path))
+        throw ParseError(*p.Loc("filename"), "cannot open image \"" + filename + "\" (looked for " +
+                                                 path + ")");
+    Image image = Image::Read(path);
+    for (int y = 0; y < image.Resolution().y; ++y)
+        for (int x = 0; x < image.Resolution().x; ++x) {
+            RGB v = image.GetChannels(Point2i(x, y));
+            if (!IsFinite(v.r) || !IsFinite(v.g) || !IsFinite(v.b))
+                throw ParseError(*p.Loc("filename"), "image \"" + filename + "\" has a non-finite pixel at (" +
+                                                         std::to_string(x) + ", " + std::to_string(y) +
+                                                         "): not suitable as a light");
+        }
+    return image;
+}
+
+// pbrt-v4's goniometric light: its diagram's pole along light-space +y.
+Light CreateGoniometricLight(const TransformedSceneEntity &e, Float scale, const std::string &folder) {
+    const ParameterDictionary &p = e.parameters;
+    Emission I = GetEmission(p, "I", folder);
+    Image image = ReadLightImage(e, folder);
+    Point2i res = image.Resolution();
+    if (res.x != res.y)
+        throw ParseError(*p.Loc("filename"), "goniometric image is " + std::to_string(res.x) + " x " +
+                                                 std::to_string(res.y) +
+                                                 "; expected a square equal-area diagram");
+    Float power = p.GetOneFloat("power", -1);
+    p.ReportUnused();
+    Transform swapYZ(SquareMatrix<4>(1, 0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0, 0, 1));
+    GoniometricLight light(e.worldFromObject * swapYZ, I.spectrum, scale * I.toNits, std::move(image));
+    if (power > 0)  // the power of the diagram at this scale is 4 pi times its mean
+        light.MultiplyScale(power / (4 * Pi * light.MeanIntensity()));
+    return light;
+}
+
+// pbrt-v4's projection light: the image's top row toward light-space +y.
+Light CreateProjectionLight(const TransformedSceneEntity &e, Float scale, const std::string &folder) {
+    const ParameterDictionary &p = e.parameters;
+    Float fov = p.GetOneFloat("fov", 90);
+    if (!(fov > 0 && fov < 180))
+        throw ParseError(*p.Loc("fov"), "projection \"fov\" is " + std::to_string(fov) +
+                                            "; expected degrees in (0, 180)");
+    Float power = p.GetOneFloat("power", -1);
+    Image image = ReadLightImage(e, folder);
+    p.ReportUnused();
+    const RGBColorSpace &cs = RGBColorSpace::sRGB();
+    scale /= SpectrumToPhotometric(Spectrum::DenselySampled(cs.illuminant));
+    Transform worldFromLight = e.worldFromObject * Scale(1, -1, 1);
+    ProjectionLight light(worldFromLight, std::move(image), &cs, scale, fov);
+    if (power > 0) {
+        RGB luminance = cs.LuminanceVector();
+        Float k = light.IntegrateOverSolidAngle([&](RGB rgb) {
+            return luminance.r * rgb.r + luminance.g * rgb.g + luminance.b * rgb.b;
+        });
+        light.MultiplyScale(power / k);
+    }
+    return light;
+}
+
 }  // namespace
 
 std::optional<Light> CreateLight(const TransformedSceneEntity &e, const std::string &folder) {
@@ -126,12 +191,12 @@ std::optional<Light> CreateLight(const TransformedSceneEntity &e, const std::str
     }
     if (e.name == "infinite")
         return CreateInfiniteLight(e, scale, folder);
-    if (e.name == "goniometric" || e.name == "projection") {
-        WarningAt(e.loc, "LightSource \"%s\" is not supported: skipped", e.name.c_str());
-        return std::nullopt;
-    }
+    if (e.name == "goniometric")
+        return CreateGoniometricLight(e, scale, folder);
+    if (e.name == "projection")
+        return CreateProjectionLight(e, scale, folder);
     throw ParseError(e.loc, "unknown LightSource \"" + e.name +
-                                "\": expected point, spot, distant or infinite");
+                                "\": expected point, spot, goniometric, projection, distant or infinite");
 }
 
 AreaLightDescription CreateAreaLight(const SceneEntity &e, const std::string &folder) {

@@ -267,9 +267,6 @@ std::string UniformInfiniteLight::ToString() const {
 namespace {
 
 // Radiance is the pixel clamped at zero (EXR filtering can ring below it).
-RGB ClampZero(RGB rgb) {
-    return RGB(std::max<Float>(0, rgb.r), std::max<Float>(0, rgb.g), std::max<Float>(0, rgb.b));
-}
 RGB PixelRGB(const Image &image, Point2i p) { return ClampZero(image.GetChannels(p)); }
 
 // The pixels' average clamped RGB, row-major as PiecewiseConstant2D expects. Unlike

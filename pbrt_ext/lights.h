@@ -1,5 +1,5 @@
-// Lights (pbrt-v4's src/pbrt/lights.h, reduced: no media, no time, no textured or
-// alpha-masked area lights, no portal or projection lights).
+// Lights (pbrt-v4's src/pbrt/lights.h, reduced: no time, no textured or alpha-masked area
+// lights, no portal lights). The goniometric and projection lights are in imagepointlights.h.
 //
 // Conventions, as in pbrt-v4:
 //   - Render space = world space; worldFromLight is pbrt-v4's renderFromLight.
@@ -23,7 +23,9 @@
 #pragma once
 
 #include "pbrt_ext/interaction.h"
+#include "pbrt_ext/imagepointlights.h"
 #include "pbrt_ext/lightbounds.h"
+#include "pbrt_ext/lightsample.h"
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/ray.h"
 #include "pbrt_ext/shapes.h"
@@ -40,20 +42,6 @@
 #include <variant>
 
 namespace pbrt {
-
-enum class LightType { DeltaPosition, DeltaDirection, Area, Infinite };
-
-inline bool IsDeltaLight(LightType type) {
-    return type == LightType::DeltaPosition || type == LightType::DeltaDirection;
-}
-
-struct LightLiSample {
-    SampledSpectrum L;
-    Vector3f wi;  // unit, from the receiving point toward the light
-    Float pdf;    // per unit solid angle; 1 for delta lights
-    Point3f pLight;
-    Normal3f nLight;  // zero where the light has no surface
-};
 
 // Isotropic point source of intensity scale * I at the light-space origin.
 class PointLight {
@@ -275,8 +263,8 @@ class Light {
     }
 
   private:
-    std::variant<PointLight, SpotLight, DistantLight, DiffuseAreaLight, UniformInfiniteLight,
-                 ImageInfiniteLight>
+    std::variant<PointLight, SpotLight, GoniometricLight, ProjectionLight, DistantLight,
+                 DiffuseAreaLight, UniformInfiniteLight, ImageInfiniteLight>
         light;
 };
 

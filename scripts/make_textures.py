@@ -1,4 +1,5 @@
-"""Writes the image textures of the texture scenes: scenes/textures/plaid.png and tiles.png.
+"""Writes the images of the texture and light scenes: scenes/textures/plaid.png, tiles.png and
+goniometric.png.
 
 Usage: python3 scripts/make_textures.py [out_dir]   (default: scenes/textures)
 Deterministic, standard library only (PNG through zlib), so rerunning it reproduces the files.
@@ -8,6 +9,10 @@ from one stripe sequence across and down. 200 is not a power of two on purpose: 
 pbrt_ext) resample such an image up to 256 x 256 before building its MIP pyramid.
 tiles.png: a 256 x 256 8-bit gray image of 8 x 8 light tiles with dark 2-texel grout lines, the
 high-contrast, high-frequency pattern that a floor seen at a grazing angle aliases.
+goniometric.png: a 64 x 64 8-bit gray goniometric diagram in pbrt's equal-area octahedral
+square: |u - 1/2| + |v - 1/2| grows from the pole at the centre to the opposite pole at the
+corners, so bands of it are bands of latitude; bright bands alternate with dim ones, brightest
+around the pole, and one quadrant (an azimuth range) is dimmed.
 """
 import os
 import struct
@@ -53,10 +58,19 @@ def tiles(x, y):
     return (40,) if grout else (215,)
 
 
+def goniometric(x, y):
+    u, v = (x + 0.5) / 64 - 0.5, (y + 0.5) / 64 - 0.5
+    latitude = abs(u) + abs(v)  # 0 at the pole, 1 at the opposite one
+    band = 1.0 if int(latitude * 8) % 2 == 0 else 0.25
+    level = band * (1 - 0.6 * latitude) * (0.3 if u > 0 and v > 0 else 1.0)
+    return (int(round(255 * level)),)
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "scenes", "textures")
     write_png(os.path.join(out, "plaid.png"), 200, 200, 3, plaid)
     write_png(os.path.join(out, "tiles.png"), 256, 256, 1, tiles)
+    write_png(os.path.join(out, "goniometric.png"), 64, 64, 1, goniometric)
 
 
 if __name__ == "__main__":

@@ -48,9 +48,6 @@ Spectrum At4(SampledSpectrum v) {
     return Spectrum::PiecewiseLinear({400, 500, 600, 700}, {v[0], v[1], v[2], v[3]});
 }
 
-RGB ClampZero(RGB rgb) {
-    return RGB(std::max<Float>(0, rgb.r), std::max<Float>(0, rgb.g), std::max<Float>(0, rgb.b));
-}
 
 void ExpectSpectrumNear(SampledSpectrum a, SampledSpectrum b, Float relTol) {
     for (int c = 0; c < NSpectrumSamples; ++c)

@@ -103,7 +103,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                          "subdivision.pbrt", "cylinders.pbrt",
                                          "motion-blur.pbrt", "fabric-woven.pbrt",
                                          "hair-fur.pbrt", "fabric-textured.pbrt",
-                                         "procedural-textures.pbrt"));
+                                         "procedural-textures.pbrt",
+                                         "lights-goniometric-projection.pbrt"));
 
 // Curves of each type with hair, a moving cylinder, a moving spherical camera, a bump map (ray
 // differentials), tangents S and a subdivision surface, all in one scene (also a fuzz seed).
@@ -403,7 +404,11 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
         {"load_texture_mapping.pbrt",
          ":3:39: error: unknown texture mapping \"cubic\": expected uv, spherical, cylindrical or planar"},
         {"load_texture_type.pbrt", ":3:1: error: unknown float texture \"marble\": expected constant, "},
-        {"load_checkerboard_dimension.pbrt", ":3:39: error: checkerboard \"dimension\" is 4; expected 2 or 3"}};
+        {"load_checkerboard_dimension.pbrt", ":3:39: error: checkerboard \"dimension\" is 4; expected 2 or 3"},
+        // Lights made from images.
+        {"load_goniometric_square.pbrt",
+         ":3:27: error: goniometric image is 3 x 2; expected a square equal-area diagram"},
+        {"load_projection_filename.pbrt", ":3:1: error: LightSource \"projection\" needs \"string filename\""}};
     for (auto [name, expected] : cases) {
         std::string file = std::string(PBRT_EXT_TEST_DATA_DIR) + "/bad/" + name;
         std::string error = LoadError(file);

@@ -76,6 +76,11 @@ struct RGB {
     }
 };
 
+// Each component clamped at zero (image filtering can ring below it).
+PBRT_CPU_GPU inline RGB ClampZero(RGB rgb) {
+    return RGB(rgb.r > 0 ? rgb.r : 0, rgb.g > 0 ? rgb.g : 0, rgb.b > 0 ? rgb.b : 0);
+}
+
 // ---- XYZ ---------------------------------------------------------------------------------------
 
 // A chromaticity (x, y) = (X, Y) / (X + Y + Z).
