@@ -91,8 +91,8 @@ Light CreateInfiniteLight(const TransformedSceneEntity &e, Float scale,
     return ImageInfiniteLight(e.worldFromObject, Image::Read(path), scale, &cs);
 }
 
-// A goniometric or projection light's image: "filename" is required; pixels must be finite.
-Image ReadLightImage(const TransformedSceneEntity &e, const std::string &folder) {
+// A light's image (goniometric, projection, area): "filename" is required; pixels must be finite.
+Image ReadLightImage(const SceneEntity &e, const std::string &folder) {
     const ParameterDictionary &p = e.parameters;
     std::string filename = p.GetOneString("filename", "");
     if (filename.empty())
@@ -204,14 +204,19 @@ AreaLightDescription CreateAreaLight(const SceneEntity &e, const std::string &fo
     if (e.name != "diffuse")
         throw ParseError(e.loc, "unknown AreaLightSource \"" + e.name + "\": expected diffuse");
     AreaLightDescription light;
-    Emission L = GetEmission(p, "L", folder);
-    light.L = L.spectrum;
-    light.scale = p.GetOneFloat("scale", 1) * L.toNits;
     light.twoSided = p.GetOneBool("twosided", false);
     light.power = p.GetOneFloat("power", -1);
     if (p.HasParameter("filename")) {
-        p.GetOneString("filename", "");
-        WarningAt(*p.Loc("filename"), "image area lights are not supported: emitting \"L\"");
+        if (p.HasParameter("L"))
+            throw ParseError(*p.Loc("L"), "an area light takes \"L\" or \"filename\", not both");
+        // pbrt-v4 makes an image's texels 1 nit per unit of the colour space's illuminant.
+        const RGBColorSpace &cs = RGBColorSpace::sRGB();
+        light.image = std::make_shared<const EmissionImage>(ReadLightImage(e, folder), &cs);
+        light.scale = p.GetOneFloat("scale", 1) / SpectrumToPhotometric(Spectrum::DenselySampled(cs.illuminant));
+    } else {
+        Emission L = GetEmission(p, "L", folder);
+        light.L = L.spectrum;
+        light.scale = p.GetOneFloat("scale", 1) * L.toNits;
     }
     p.ReportUnused();
     return light;

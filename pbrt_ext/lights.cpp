@@ -147,19 +147,51 @@ std::string DistantLight::ToString() const {
 // ---------------------------------------------------------------------------------------
 // DiffuseAreaLight
 
-DiffuseAreaLight::DiffuseAreaLight(Shape shape, Spectrum Lemit, Float scale, bool twoSided)
-    : shape(std::move(shape)), area(this->shape.Area()), Lemit(TabulatedForLookup(Lemit)), scale(scale),
-      twoSided(twoSided) {}
-
-// Lambertian emission: pi L per unit area and side.
-SampledSpectrum DiffuseAreaLight::Phi(const SampledWavelengths &lambda) const {
-    return Pi * (twoSided ? 2 : 1) * area * scale * Lemit.Sample(lambda);
+EmissionImage::EmissionImage(Image image, const RGBColorSpace *colorSpace)
+    : image(std::move(image)), colorSpace(colorSpace) {
+    Point2i res = this->image.Resolution();
+    RGB lum = colorSpace->LuminanceVector();
+    double sum = 0, sumLuminance = 0;
+    for (int y = 0; y < res.y; ++y)
+        for (int x = 0; x < res.x; ++x) {
+            RGB rgb = this->image.GetChannels(Point2i(x, y));
+            sum += rgb.Average();
+            sumLuminance += lum.r * rgb.r + lum.g * rgb.g + lum.b * rgb.b;
+        }
+    double n = double(res.x) * res.y;
+    meanChannel = Float(sum / n);
+    meanLuminance = Float(sumLuminance / n);
 }
 
-SampledSpectrum DiffuseAreaLight::L(Point3f, Normal3f n, Point2f, Vector3f w,
+RGB EmissionImage::Lookup(Point2f uv) const {
+    return ClampZero(image.Bilerp(Point2f(uv[0], 1 - uv[1]), WrapMode::Clamp));
+}
+
+DiffuseAreaLight::DiffuseAreaLight(Shape shape, Spectrum Lemit, Float scale, bool twoSided,
+                                   std::shared_ptr<const EmissionImage> image)
+    : shape(std::move(shape)), area(this->shape.Area()), Lemit(TabulatedForLookup(Lemit)), scale(scale),
+      twoSided(twoSided), image(std::move(image)) {}
+
+// Lambertian emission: pi L per unit area and side, L the image's mean spectrum if there is one.
+SampledSpectrum DiffuseAreaLight::Phi(const SampledWavelengths &lambda) const {
+    SampledSpectrum L = Lemit.Sample(lambda);
+    if (image) {
+        Point2i res = image->image.Resolution();
+        L = SampledSpectrum(0.f);
+        for (int y = 0; y < res.y; ++y)
+            for (int x = 0; x < res.x; ++x)
+                L += RGBIlluminantSpectrum(*image->colorSpace, ClampZero(image->image.GetChannels(Point2i(x, y))))
+                         .Sample(lambda);
+        L /= Float(res.x * res.y);
+    }
+    return Pi * (twoSided ? 2 : 1) * area * scale * L;
+}
+
+SampledSpectrum DiffuseAreaLight::L(Point3f, Normal3f n, Point2f uv, Vector3f w,
                                     const SampledWavelengths &lambda) const {
     if (!twoSided && Dot(n, w) < 0)
         return SampledSpectrum(0.f);
+    if (image) return scale * RGBIlluminantSpectrum(*image->colorSpace, image->Lookup(uv)).Sample(lambda);
     return scale * Lemit.Sample(lambda);
 }
 
@@ -211,7 +243,7 @@ DirectionCone NormalBounds(const Shape &shape) {
 
 // pbrt-v4's: power pi L area (one side), the shape's normal cone, emission over a hemisphere.
 pstd::optional<LightBounds> DiffuseAreaLight::Bounds() const {
-    Float phi = Lemit.MaxValue() * scale * area * Pi;
+    Float phi = (image ? image->meanChannel : Lemit.MaxValue()) * scale * area * Pi;
     DirectionCone normals = NormalBounds(shape);
     return LightBounds(shape.Bounds(), normals.w, phi, normals.cosTheta, 0, twoSided);
 }

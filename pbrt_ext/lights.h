@@ -38,6 +38,7 @@
 #include "pbrt_ext/util/transform.h"
 #include "pbrt_ext/util/vecmath.h"
 
+#include <memory>
 #include <string>
 #include <variant>
 
@@ -114,9 +115,25 @@ class DistantLight {
 
 // Constant radiance scale * Lemit leaving the front of a shape (both sides if twoSided); the
 // front is the side the shape's geometric normal n points to.
+// What modulates an image area light's emission over its uv (pbrt-v4's "filename" on a diffuse
+// area light): the image's RGB as illuminant spectra of its colour space, bilinear, t flipped
+// so that t = 0 is the file's bottom row, clamped at the edges. Shared by the lights of every
+// primitive of the shape.
+struct EmissionImage {
+    EmissionImage(Image image, const RGBColorSpace *colorSpace);
+    RGB Lookup(Point2f uv) const;
+
+    Image image;
+    const RGBColorSpace *colorSpace;
+    Float meanChannel;    // over all texels and channels: the lights' bounds use it
+    Float meanLuminance;  // of the texels' RGB: "power" divides by it
+};
+
 class DiffuseAreaLight {
   public:
-    DiffuseAreaLight(Shape shape, Spectrum Lemit, Float scale, bool twoSided);
+    // Emits scale * Lemit, or scale times the image's spectrum at the point's uv where there is one.
+    DiffuseAreaLight(Shape shape, Spectrum Lemit, Float scale, bool twoSided,
+                     std::shared_ptr<const EmissionImage> image = nullptr);
 
     LightType Type() const { return LightType::Area; }
     SampledSpectrum Phi(const SampledWavelengths &lambda) const;
@@ -136,6 +153,7 @@ class DiffuseAreaLight {
     Spectrum Lemit;
     Float scale;
     bool twoSided;
+    std::shared_ptr<const EmissionImage> image;
 };
 
 // Constant radiance scale * Lemit from every direction at infinity.

@@ -32,10 +32,12 @@ int SceneBuilder::AddAreaLights(const AreaLightDescription &emission, int count,
         Shape shape = shapeFor(i);
         Float scale = emission.scale;
         if (emission.power > 0) {
-            Float k = Pi * shape.Area() * (emission.twoSided ? 2 : 1);
+            Float k = Pi * shape.Area() * (emission.twoSided ? 2 : 1) *
+                      (emission.image ? emission.image->meanLuminance : 1);
             scale *= k > 0 ? emission.power / k : 0;
         }
-        scene->lights.push_back(DiffuseAreaLight(std::move(shape), emission.L, scale, emission.twoSided));
+        scene->lights.push_back(
+            DiffuseAreaLight(std::move(shape), emission.L, scale, emission.twoSided, emission.image));
     }
     return first;
 }

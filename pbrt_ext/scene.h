@@ -101,8 +101,11 @@ struct AreaLightDescription {
     Float scale = 1;
     bool twoSided = false;
     // pbrt-v4's "power" (> 0: set): each shape's scale is multiplied by power / (pi area (2 if
-    // two-sided)), so that each emitting shape (each triangle of a mesh, as in pbrt-v4) emits it.
+    // two-sided) (the image's mean luminance, if any)), so that each emitting shape (each
+    // triangle of a mesh, as in pbrt-v4) emits it.
     Float power = -1;
+    // pbrt-v4's "filename": the emission is this image over the shape's uv instead of L.
+    std::shared_ptr<const EmissionImage> image = nullptr;
 };
 
 class SceneBuilder {

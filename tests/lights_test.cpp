@@ -430,4 +430,30 @@ TEST(DiffuseAreaLight, TriangleChiSquare) {
     });
 }
 
+// An image area light (pbrt-v4's "filename"): a 2x2 image, top row red and green, bottom row
+// blue and white. t is flipped, so uv (0.25, 0.75) is the top-left texel's centre: red; uv
+// (0.5, 0.5) is the mean of the four; RGB become the colour space's illuminant spectra.
+TEST(DiffuseAreaLight, ImageEmissionFollowsUV) {
+    Image image(Point2i(2, 2));
+    RGB texels[4] = {RGB(1, 0, 0), RGB(0, 1, 0), RGB(0, 0, 1), RGB(1, 1, 1)};
+    for (int i = 0; i < 4; ++i)
+        for (int c = 0; c < 3; ++c) image.SetChannel(Point2i(i % 2, i / 2), c, texels[i][c]);
+    const RGBColorSpace &cs = RGBColorSpace::sRGB();
+    auto emission = std::make_shared<const EmissionImage>(image, &cs);
+    Disk disk(Transform(), false, 0, 1, 0, 360);
+    Light light = DiffuseAreaLight(disk, Spectrum(1.f), 3, false, emission);
+    Normal3f n(0, 0, 1);
+    Vector3f w(0, 0.6f, 0.8f);
+    auto spectrum = [&](RGB rgb) { return RGBIlluminantSpectrum(cs, rgb).Sample(kLambda); };
+    ExpectSpectrumNear(light.L(Point3f(), n, Point2f(0.25f, 0.75f), w, kLambda), 3 * spectrum(RGB(1, 0, 0)), 1e-5f);
+    ExpectSpectrumNear(light.L(Point3f(), n, Point2f(0.75f, 0.25f), w, kLambda), 3 * spectrum(RGB(1, 1, 1)), 1e-5f);
+    ExpectSpectrumNear(light.L(Point3f(), n, Point2f(0.5f, 0.5f), w, kLambda), 3 * spectrum(RGB(0.5f, 0.5f, 0.5f)), 1e-5f);
+    EXPECT_FALSE(light.L(Point3f(), n, Point2f(0.5f, 0.5f), -w, kLambda));
+    // Power: pi area scale times the texels' mean spectrum (not the spectrum of their mean RGB).
+    SampledSpectrum mean(0.f);
+    for (RGB t : texels) mean += spectrum(t) / 4;
+    ExpectSpectrumNear(light.Phi(kLambda), Pi * Pi * 3 * mean, 1e-4f);
+    EXPECT_NEAR(emission->meanChannel, 0.5f, 1e-6f);
+}
+
 }  // namespace
