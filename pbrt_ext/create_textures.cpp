@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <map>
+#include <type_traits>
 
 namespace pbrt {
 
@@ -108,8 +109,10 @@ ImageTexture CreateImageTexture(const TransformedSceneEntity &e, const std::stri
                                              "\": expected repeat, clamp, black or octahedralsphere");
     t.scale = p.GetOneFloat("scale", 1);
     t.invert = p.GetOneBool("invert", false);
+    ImageChannels channels =
+        std::is_same_v<ImageTexture, FloatImageTexture> ? ImageChannels::AlphaOfRGBA : ImageChannels::RGB;
     t.mipmap = ImageTextureCache::GetMIPMap(path, *encoding, *wrapMode,
-                                            MIPMapFilterOptions{*filter, maxAnisotropy});
+                                            MIPMapFilterOptions{*filter, maxAnisotropy}, channels);
     return t;
 }
 

@@ -102,7 +102,7 @@ class OnceCache {
 };
 
 using ImageKey = std::pair<std::string, std::string>;  // file, encoding
-using MIPMapKey = std::tuple<std::string, std::string, int, int, Float>;  // and wrap, filter
+using MIPMapKey = std::tuple<std::string, std::string, int, int, Float, int>;  // and wrap, filter, channels
 
 OnceCache<ImageKey, Image> &Images() {
     static OnceCache<ImageKey, Image> images;
@@ -124,10 +124,13 @@ std::shared_ptr<const Image> ImageTextureCache::Get(const std::string &filename,
 
 std::shared_ptr<const MIPMap> ImageTextureCache::GetMIPMap(const std::string &filename,
                                                           ColorEncoding encoding, WrapMode wrapMode,
-                                                          MIPMapFilterOptions options) {
+                                                          MIPMapFilterOptions options,
+                                                          ImageChannels channels) {
     MIPMapKey key(filename, encoding.ToString(), int(wrapMode), int(options.filter),
-                  options.maxAnisotropy);
-    return MIPMaps().Get(key, [&] { return MIPMap(Image::Read(filename, encoding), wrapMode, options); });
+                  options.maxAnisotropy, int(channels));
+    return MIPMaps().Get(key, [&] {
+        return MIPMap(Image::Read(filename, encoding, channels), wrapMode, options);
+    });
 }
 
 void ImageTextureCache::Clear() {

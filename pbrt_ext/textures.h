@@ -136,7 +136,8 @@ struct ImageTextureBase {
     RGB ScaledLookup(const TextureEvalContext &ctx) const;
 };
 
-// The average of the channels, as pbrt-v4 reads an RGB image as a float texture.
+// The average of the channels, as pbrt-v4 reads an RGB image as a float texture; an RGBA
+// file's alpha where it is not 1 everywhere, as pbrt-v4 reads that.
 struct FloatImageTexture : ImageTextureBase {
     Float Evaluate(const TextureEvalContext &ctx) const;
 };
@@ -156,8 +157,10 @@ struct SpectrumImageTexture : ImageTextureBase {
 class ImageTextureCache {
   public:
     static std::shared_ptr<const Image> Get(const std::string &filename, ColorEncoding encoding);
+    // channels: AlphaOfRGBA for a float texture, which reads an RGBA file's alpha (pbrt-v4).
     static std::shared_ptr<const MIPMap> GetMIPMap(const std::string &filename, ColorEncoding encoding,
-                                                   WrapMode wrapMode, MIPMapFilterOptions options);
+                                                   WrapMode wrapMode, MIPMapFilterOptions options,
+                                                   ImageChannels channels = ImageChannels::RGB);
     static void Clear();
 };
 

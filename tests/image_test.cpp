@@ -191,6 +191,31 @@ TEST_F(ImageFiles, EightBitFilesKeepTheirBytes) {
     EXPECT_EQ(back.GetChannels(Point2i(2, 1)).g, before.g);
 }
 
+// A float image texture reads an RGBA file's alpha where it is not 1 everywhere (pbrt-v4),
+// decoded through the same encoding as the colour; other files keep their RGB.
+TEST_F(ImageFiles, AlphaOfRGBAReadsAlphaWhereThereIsSome) {
+    const fs::path png = fs::path(PBRT_EXT_TEST_DATA_DIR) / "png";
+    // rgba16.png: 16-bit, alpha equal to green at (0, 0): 20000 / 65535.
+    Image alpha = Image::Read((png / "rgba16.png").string(), ColorEncoding::Linear(), ImageChannels::AlphaOfRGBA);
+    RGB a = alpha.GetChannels(Point2i(0, 0));
+    EXPECT_NEAR(a.r, 20000.f / 65535, 1e-6f);
+    EXPECT_EQ(a.r, a.g);
+    EXPECT_EQ(a.g, a.b);
+    // palette4_trns.png: 8-bit RGBA through a palette; texel (1, 0) has alpha 128 / 255, texel
+    // (2, 0) alpha 0, texel (0, 0) alpha 1.
+    Image trns = Image::Read((png / "palette4_trns.png").string(), ColorEncoding::SRGB(), ImageChannels::AlphaOfRGBA);
+    EXPECT_NEAR(trns.GetChannels(Point2i(1, 0)).g, SRGBToLinear(128.f / 255), 1e-6f);
+    EXPECT_EQ(trns.GetChannels(Point2i(2, 0)).b, 0);
+    EXPECT_EQ(trns.GetChannels(Point2i(0, 0)).r, 1);
+    // No alpha (rgb8.png) or no R, G, B (grayalpha8.png: Y and A): the colour, as Read gives it.
+    for (const char *name : {"rgb8.png", "grayalpha8.png"}) {
+        Image rgb = Image::Read((png / name).string());
+        Image asAlpha = Image::Read((png / name).string(), ColorEncoding::SRGB(), ImageChannels::AlphaOfRGBA);
+        for (int x = 0; x < rgb.Resolution().x; ++x)
+            EXPECT_EQ(asAlpha.GetChannels(Point2i(x, 0)), rgb.GetChannels(Point2i(x, 0))) << name;
+    }
+}
+
 TEST_F(ImageFiles, ReadErrorsNameTheFile) {
     std::string missing = Path("missing.exr");
     try {

@@ -56,6 +56,19 @@ std::array<int, 3> RGBChannelIndices(const ImageFileSpec &spec) {
     return {0, 1, 2};
 }
 
+// The channel "A" of an R, G, B, A file where it is not 1 everywhere; -1 otherwise.
+int NontrivialAlphaIndex(const ImageFileSpec &spec, const std::vector<float> &raw) {
+    int index[4] = {-1, -1, -1, -1};
+    const char *names[4] = {"R", "G", "B", "A"};
+    for (int c = 0; c < 4; ++c)
+        for (int i = 0; i < spec.nChannels && i < int(spec.channelNames.size()); ++i)
+            if (spec.channelNames[size_t(i)] == names[c]) index[c] = i;
+    if (std::find(std::begin(index), std::end(index), -1) != std::end(index)) return -1;
+    for (size_t i = size_t(index[3]); i < raw.size(); i += size_t(spec.nChannels))
+        if (raw[i] != 1) return index[3];
+    return -1;
+}
+
 // The reader for the file: libpng and OpenEXR for their formats (by signature, whatever the
 // extension), stb_image for the formats pbrt-v4 reads with it (by extension), OpenImageIO's
 // module for the rest.
@@ -129,7 +142,7 @@ std::string ColorEncoding::ToString() const {
     }
 }
 
-Image Image::Read(const std::string &path, ColorEncoding encoding) {
+Image Image::Read(const std::string &path, ColorEncoding encoding, ImageChannels channels) {
     CheckDeclaredSizes(path);  // before a decoder allocates what a corrupt header declares
     std::unique_ptr<ImageFileReader> in;
     try {
@@ -165,6 +178,8 @@ Image Image::Read(const std::string &path, ColorEncoding encoding) {
     // Integer pixels are display-encoded; float pixels are radiometric already.
     if (spec.isFloat) encoding = ColorEncoding::Linear();
     std::array<int, 3> channel = RGBChannelIndices(spec);
+    if (channels == ImageChannels::AlphaOfRGBA)
+        if (int a = NontrivialAlphaIndex(spec, raw); a >= 0) channel = {a, a, a};
     if (spec.is8Bit) {
         Image image;
         image.resolution = Point2i(spec.width, spec.height);

@@ -148,6 +148,8 @@ struct ImageMetadata {
     const RGBColorSpace *colorSpace = nullptr;
 };
 
+enum class ImageChannels { RGB, AlphaOfRGBA };
+
 class Image {
   public:
     static constexpr int NChannels() { return 3; }
@@ -207,7 +209,11 @@ class Image {
     static std::vector<Image> GeneratePyramid(Image image, WrapMode2D wrapMode);
 
     // Integer formats are decoded with encoding; float formats are linear whatever it says.
-    static Image Read(const std::string &path, ColorEncoding encoding = ColorEncoding::SRGB());
+    // AlphaOfRGBA reads an R, G, B, A file's alpha into all three channels, where it is not 1
+    // everywhere (pbrt-v4's float image textures read alpha so), through the same encoding as
+    // pbrt-v4 decodes it; any other file is read as RGB.
+    static Image Read(const std::string &path, ColorEncoding encoding = ColorEncoding::SRGB(),
+                      ImageChannels channels = ImageChannels::RGB);
     void Write(const std::string &path, const ImageMetadata &metadata = {}) const;
 
   private:
