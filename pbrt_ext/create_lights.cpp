@@ -5,8 +5,10 @@
 
 #include "pbrt_ext/spectra.h"
 #include "pbrt_ext/util/colorspace.h"
+#include "pbrt_ext/util/equalarea.h"
 #include "pbrt_ext/util/error.h"
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 
@@ -58,39 +60,6 @@ Light CreateSpotLight(const TransformedSceneEntity &e, Spectrum I, Float scale) 
     return SpotLight(worldFromLight, I, scale, coneAngle, coneAngle - coneDelta);
 }
 
-Light CreateInfiniteLight(const TransformedSceneEntity &e, Float scale,
-                          const std::string &folder) {
-    const ParameterDictionary &p = e.parameters;
-    std::string filename = p.GetOneString("filename", "");
-    if (p.HasParameter("portal")) {
-        p.GetPoint3fArray("portal");
-        WarningAt(*p.Loc("portal"), "infinite light portals are not supported: ignored (the "
-                                    "image is the same, the noise differs)");
-    }
-    Float illuminance = p.GetOneFloat("illuminance", -1);
-    if (filename.empty()) {
-        Emission L = GetEmission(p, "L", folder);
-        scale *= L.toNits;
-        if (illuminance > 0)
-            scale *= illuminance / Pi;  // a uniform sky of radiance 1 gives E = π
-        p.ReportUnused();
-        return UniformInfiniteLight(L.spectrum, scale);
-    }
-    if (p.HasParameter("L"))
-        throw ParseError(*p.Loc("L"), "an infinite light takes \"L\" or \"filename\", not both");
-    if (illuminance > 0)
-        WarningAt(*p.Loc("illuminance"), "\"illuminance\" of an image infinite light is not "
-                                         "supported: using \"scale\" alone");
-    p.ReportUnused();
-    std::string path = ResolvePath(folder, filename);
-    if (!std::filesystem::is_regular_file(path))
-        throw ParseError(*p.Loc("filename"), "cannot open image \"" + filename + "\" (looked for " +
-                                                 path + ")");
-    const RGBColorSpace &cs = RGBColorSpace::sRGB();
-    scale /= SpectrumToPhotometric(Spectrum::DenselySampled(cs.illuminant));
-    return ImageInfiniteLight(e.worldFromObject, Image::Read(path), scale, &cs);
-}
-
 // A light's image (goniometric, projection, area): "filename" is required; pixels must be finite.
 Image ReadLightImage(const SceneEntity &e, const std::string &folder) {
     const ParameterDictionary &p = e.parameters;
@@ -112,6 +81,87 @@ Image ReadLightImage(const SceneEntity &e, const std::string &folder) {
         }
     return image;
 }
+
+// pbrt-v4's "portal": four world-space corners of a rectangle, or none.
+std::optional<std::array<Point3f, 4>> GetPortal(const ParameterDictionary &p) {
+    if (!p.HasParameter("portal")) return {};
+    std::vector<Point3f> points = p.GetPoint3fArray("portal");
+    if (points.size() != 4)
+        throw ParseError(*p.Loc("portal"), "\"portal\" has " + std::to_string(points.size()) +
+                                               " points; expected the rectangle's 4 corners");
+    std::array<Point3f, 4> portal = {points[0], points[1], points[2], points[3]};
+    if (std::string error = PortalImageInfiniteLight::PortalFrameError(portal); !error.empty())
+        throw ParseError(*p.Loc("portal"), error);
+    return portal;
+}
+
+// A uniform environment behind a portal: a 1x1 image of L's sRGB, as pbrt-v4 makes it.
+Image UniformImage(const Spectrum &L) {
+    RGB rgb = RGBColorSpace::sRGB().ToRGB(SpectrumToXYZ(L));
+    Image image(Point2i(1, 1));
+    for (int c = 0; c < 3; ++c) image.SetChannel(Point2i(0, 0), c, rgb[c]);
+    return image;
+}
+
+// The illuminance an equal-area environment image gives a surface facing +z (pbrt-v4's, for
+// "illuminance": the texels above the horizon, luminance times cos theta).
+Float UpperHemisphereIlluminance(const Image &image, const RGBColorSpace &cs) {
+    Point2i res = image.Resolution();
+    RGB lum = cs.LuminanceVector();
+    double sum = 0;
+    for (int y = 0; y < res.y; ++y)
+        for (int x = 0; x < res.x; ++x) {
+            Vector3f w = EqualAreaSquareToSphere(Point2f((x + 0.5f) / res.x, (y + 0.5f) / res.y));
+            if (w.z <= 0) continue;
+            RGB v = image.GetChannels(Point2i(x, y));
+            sum += (v.r * lum.r + v.g * lum.g + v.b * lum.b) * w.z;
+        }
+    return Float(sum * 2 * Pi / (double(res.x) * res.y));
+}
+
+// An environment image (from "filename", or L's colour behind a portal), as pbrt-v4 reads it.
+Image EnvironmentImage(const TransformedSceneEntity &e, const std::string &filename, bool portal,
+                       const std::string &folder) {
+    const ParameterDictionary &p = e.parameters;
+    if (filename.empty())
+        return UniformImage(GetSpectrum(p, "L", Spectrum::DenselySampled(RGBColorSpace::sRGB().illuminant),
+                                        SpectrumType::Illuminant, folder));
+    if (p.HasParameter("L"))
+        throw ParseError(*p.Loc("L"), "an infinite light takes \"L\" or \"filename\", not both");
+    Image image = ReadLightImage(e, folder);
+    if (portal && image.Resolution().x != image.Resolution().y)
+        throw ParseError(*p.Loc("filename"), "environment image \"" + filename + "\" is " +
+                                                 std::to_string(image.Resolution().x) + " x " +
+                                                 std::to_string(image.Resolution().y) +
+                                                 "; expected a square equal-area map");
+    return image;
+}
+
+Light CreateInfiniteLight(const TransformedSceneEntity &e, Float scale,
+                          const std::string &folder) {
+    const ParameterDictionary &p = e.parameters;
+    std::string filename = p.GetOneString("filename", "");
+    std::optional<std::array<Point3f, 4>> portal = GetPortal(p);
+    Float illuminance = p.GetOneFloat("illuminance", -1);
+    if (filename.empty() && !portal) {
+        Emission L = GetEmission(p, "L", folder);
+        scale *= L.toNits;
+        if (illuminance > 0)
+            scale *= illuminance / Pi;  // a uniform sky of radiance 1 gives E = π
+        p.ReportUnused();
+        return UniformInfiniteLight(L.spectrum, scale);
+    }
+    Image image = EnvironmentImage(e, filename, portal.has_value(), folder);
+    p.ReportUnused();
+    const RGBColorSpace &cs = RGBColorSpace::sRGB();
+    scale /= SpectrumToPhotometric(Spectrum::DenselySampled(cs.illuminant));
+    if (illuminance > 0)
+        scale *= illuminance / UpperHemisphereIlluminance(image, cs);
+    if (portal)
+        return PortalImageInfiniteLight(e.worldFromObject, image, scale, &cs, *portal);
+    return ImageInfiniteLight(e.worldFromObject, std::move(image), scale, &cs);
+}
+
 
 // pbrt-v4's goniometric light: its diagram's pole along light-space +y.
 Light CreateGoniometricLight(const TransformedSceneEntity &e, Float scale, const std::string &folder) {

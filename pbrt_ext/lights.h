@@ -1,5 +1,5 @@
-// Lights (pbrt-v4's src/pbrt/lights.h, reduced: no time, no textured or alpha-masked area
-// lights, no portal lights). The goniometric and projection lights are in imagepointlights.h.
+// Lights (pbrt-v4's src/pbrt/lights.h, reduced: no time, no alpha-masked area lights). The
+// goniometric and projection lights are in imagepointlights.h, the portal light in portallight.h.
 //
 // Conventions, as in pbrt-v4:
 //   - Render space = world space; worldFromLight is pbrt-v4's renderFromLight.
@@ -26,6 +26,7 @@
 #include "pbrt_ext/imagepointlights.h"
 #include "pbrt_ext/lightbounds.h"
 #include "pbrt_ext/lightsample.h"
+#include "pbrt_ext/portallight.h"
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/ray.h"
 #include "pbrt_ext/shapes.h"
@@ -282,7 +283,7 @@ class Light {
 
   private:
     std::variant<PointLight, SpotLight, GoniometricLight, ProjectionLight, DistantLight,
-                 DiffuseAreaLight, UniformInfiniteLight, ImageInfiniteLight>
+                 DiffuseAreaLight, UniformInfiniteLight, ImageInfiniteLight, PortalImageInfiniteLight>
         light;
 };
 

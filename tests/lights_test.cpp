@@ -18,6 +18,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
@@ -454,6 +455,66 @@ TEST(DiffuseAreaLight, ImageEmissionFollowsUV) {
     for (RGB t : texels) mean += spectrum(t) / 4;
     ExpectSpectrumNear(light.Phi(kLambda), Pi * Pi * 3 * mean, 1e-4f);
     EXPECT_NEAR(emission->meanChannel, 0.5f, 1e-6f);
+}
+
+// ---------------------------------------------------------------------------------------
+// Portal light
+
+// A 2 x 1 portal in the plane z = 2, centred over the origin, facing +z (corners in order).
+std::array<Point3f, 4> TestPortal() {
+    return {Point3f(-1, -0.5f, 2), Point3f(-1, 0.5f, 2), Point3f(1, 0.5f, 2), Point3f(1, -0.5f, 2)};
+}
+
+// Whether the ray from p along w crosses the portal.
+bool ThroughTestPortal(Point3f p, Vector3f w) {
+    if (w.z <= 0) return false;
+    Point3f q = p + (2 - p.z) / w.z * w;
+    return std::abs(q.x) <= 1 + 1e-4f && std::abs(q.y) <= 0.5f + 1e-4f;
+}
+
+// Seen from points below it, the portal light samples only directions through the portal, with
+// the density PDF_Li gives (chi-square), and its radiance is what a ray through the portal finds.
+TEST(PortalImageInfiniteLight, SamplesThroughThePortalAsPDFSays) {
+    Light light = PortalImageInfiniteLight(EnvironmentRotation(), TestEnvironment(), 1,
+                                           &RGBColorSpace::sRGB(), TestPortal());
+    light.Preprocess(UnitCube());
+    for (Point3f p : {Point3f(0, 0, 0), Point3f(0.7f, -0.4f, 1.2f)}) {
+        LightSampleContext ctx = ContextAt(p, Normal3f(0, 0, 1));
+        ExpectSampleLiMatchesPDF(light, ctx, false, 7);
+        RNG rng(5);
+        for (int k = 0; k < 2000; ++k) {
+            pstd::optional<LightLiSample> ls =
+                light.SampleLi(ctx, Point2f(rng.Uniform<Float>(), rng.Uniform<Float>()), kLambda);
+            ASSERT_TRUE(ls.has_value());
+            EXPECT_TRUE(ThroughTestPortal(p, ls->wi)) << ls->wi.x << " " << ls->wi.y << " " << ls->wi.z;
+        }
+        ExpectSampleLiConsistent(light, ctx, false, [&](const LightLiSample &ls) {
+            return light.Le(Ray(ctx.p, ls.wi), kLambda);
+        });
+        // Nothing arrives from outside the portal.
+        EXPECT_EQ(light.PDF_Li(ctx, Normalize(Vector3f(3, 0, 1))), 0);
+        EXPECT_FALSE(light.Le(Ray(ctx.p, Normalize(Vector3f(3, 0, 1))), kLambda));
+    }
+}
+
+// Under a uniform sky L, the irradiance at a point a height h below the centre of an a x b
+// portal parallel to it is L times the projected solid angle of the rectangle:
+// 4 * (X / sqrt(1 + X^2) atan(Y / sqrt(1 + X^2)) + Y / sqrt(1 + Y^2) atan(X / sqrt(1 + Y^2))) / 2
+// with X = a / 2h, Y = b / 2h (four corner rectangles of the differential-area form factor).
+TEST(PortalImageInfiniteLight, IrradianceUnderAUniformSky) {
+    Image sky(Point2i(8, 8));
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x)
+            for (int c = 0; c < 3; ++c) sky.SetChannel(Point2i(x, y), c, 1);
+    const RGBColorSpace &cs = RGBColorSpace::sRGB();
+    Light light = PortalImageInfiniteLight(Transform(), sky, 1, &cs, TestPortal());
+    light.Preprocess(UnitCube());
+    LightSampleContext ctx = ContextAt(Point3f(0, 0, 0), Normal3f(0, 0, 1));
+    Float L = RGBIlluminantSpectrum(cs, RGB(1, 1, 1)).Sample(kLambda)[1];
+    double X = 1.0 / 2, Y = 0.5 / 2;
+    double projected = 2 * (X / std::sqrt(1 + X * X) * std::atan(Y / std::sqrt(1 + X * X)) +
+                            Y / std::sqrt(1 + Y * Y) * std::atan(X / std::sqrt(1 + Y * Y)));
+    ExpectWithinFiveSigma(IrradianceByLightSampling(light, ctx), L * projected);
 }
 
 }  // namespace

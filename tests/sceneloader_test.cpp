@@ -104,7 +104,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                          "motion-blur.pbrt", "fabric-woven.pbrt",
                                          "hair-fur.pbrt", "fabric-textured.pbrt",
                                          "procedural-textures.pbrt",
-                                         "lights-images.pbrt"));
+                                         "lights-images.pbrt", "portal-skylight.pbrt"));
 
 // Curves of each type with hair, a moving cylinder, a moving spherical camera, a bump map (ray
 // differentials), tangents S and a subdivision surface, all in one scene (also a fuzz seed).
@@ -408,7 +408,9 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
         // Lights made from images.
         {"load_goniometric_square.pbrt",
          ":3:27: error: goniometric image is 3 x 2; expected a square equal-area diagram"},
-        {"load_projection_filename.pbrt", ":3:1: error: LightSource \"projection\" needs \"string filename\""}};
+        {"load_projection_filename.pbrt", ":3:1: error: LightSource \"projection\" needs \"string filename\""},
+        {"load_portal_rectangle.pbrt",
+         ":3:40: error: portal is not a planar rectangle (its corners in order)"}};
     for (auto [name, expected] : cases) {
         std::string file = std::string(PBRT_EXT_TEST_DATA_DIR) + "/bad/" + name;
         std::string error = LoadError(file);
