@@ -12,11 +12,17 @@ namespace pbrt {
 
 namespace {
 
-// The radiance intensity I arriving at ctx from a point light at p: I / r^2 along wi.
-pstd::optional<LightLiSample> PointLightSample(Point3f p, LightSampleContext ctx, SampledSpectrum I) {
+// What arrives at ctx from a point light at the light-space origin whose intensity toward the
+// light-space direction w is I(w): I / r^2 along wi.
+template <typename Intensity>
+pstd::optional<LightLiSample> PointLightSample(const Transform &worldFromLight, LightSampleContext ctx,
+                                               Intensity I) {
+    Point3f p = worldFromLight(Point3f(0, 0, 0));
     Float r2 = DistanceSquared(p, ctx.p);
-    if (r2 == 0 || !I) return {};
-    return LightLiSample{I / r2, Normalize(p - ctx.p), 1, p, Normal3f(0, 0, 0)};
+    if (r2 == 0) return {};
+    SampledSpectrum intensity = I(Normalize(worldFromLight.ApplyInverse(ctx.p - p)));
+    if (!intensity) return {};
+    return LightLiSample{intensity / r2, Normalize(p - ctx.p), 1, p, Normal3f(0, 0, 0)};
 }
 
 std::string Format(Point3f p) { return fmt::format("[ {}, {}, {} ]", p.x, p.y, p.z); }
@@ -45,10 +51,7 @@ SampledSpectrum GoniometricLight::Phi(const SampledWavelengths &lambda) const {
 
 pstd::optional<LightLiSample> GoniometricLight::SampleLi(LightSampleContext ctx, Point2f,
                                                          const SampledWavelengths &lambda, bool) const {
-    Point3f p = worldFromLight(Point3f(0, 0, 0));
-    if (p == ctx.p) return {};
-    Vector3f wLight = Normalize(worldFromLight.ApplyInverse(ctx.p - p));
-    return PointLightSample(p, ctx, I(wLight, lambda));
+    return PointLightSample(worldFromLight, ctx, [&](Vector3f w) { return I(w, lambda); });
 }
 
 // Bounded as an isotropic point light of the same power, as pbrt-v4 does.
@@ -94,10 +97,7 @@ SampledSpectrum ProjectionLight::Phi(const SampledWavelengths &lambda) const {
 
 pstd::optional<LightLiSample> ProjectionLight::SampleLi(LightSampleContext ctx, Point2f,
                                                         const SampledWavelengths &lambda, bool) const {
-    Point3f p = worldFromLight(Point3f(0, 0, 0));
-    if (p == ctx.p) return {};
-    Vector3f wLight = Normalize(worldFromLight.ApplyInverse(ctx.p - p));
-    return PointLightSample(p, ctx, I(wLight, lambda));
+    return PointLightSample(worldFromLight, ctx, [&](Vector3f w) { return I(w, lambda); });
 }
 
 // pbrt-v4's bounds: the axis, the cone through the image's corner, and as power the texels'
