@@ -31,7 +31,7 @@ using Mat3 = std::array<Vec3, 3>;
 template <typename F>
 Vec3 XYZUnderD65(const F &spectrum) {
     Vec3 xyz{};
-    for (int lambda = 380; lambda <= 780; ++lambda) {
+    for (int lambda = 360; lambda <= 830; ++lambda) {
         CIESample c = CIEAt(Float(lambda));
         double v = double(spectrum(Float(lambda))) * c.d65;
         xyz[0] += v * c.x;

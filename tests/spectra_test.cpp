@@ -234,10 +234,9 @@ TEST(SpectraGlass, SellmeierMatchesTheSchottCatalogRefractiveIndex) {
 
 // Every named spectrum of pbrt-v4's (but the cameras', sensor_test) at ten wavelengths across the
 // visible range, printed by pbrt-v4 itself (commit 5f7a6068, built from source: GetNamedSpectrum
-// in a small program linked against its libpbrt_lib.a). The tables are pbrt-v4's own data, so the
-// values agree to float rounding. An illuminant is scaled to luminance 1 through each renderer's
-// CIE Y, and ours is tabulated every 5 nm over 380-780 nm against pbrt-v4's 1 nm over 360-830
-// nm: the two scales differ by up to 3.8e-4 (measured), the same at every wavelength.
+// in a small program linked against its libpbrt_lib.a). The tables are pbrt-v4's own data, and
+// illuminants are scaled to luminance 1 through the same CIE Y (util/cietables.h), so the values
+// agree to float rounding.
 struct NamedReference {
     const char *name;
     Float values[10];
@@ -287,12 +286,8 @@ TEST(SpectraNamed, EveryTableIsPbrtV4s) {
     for (const NamedReference &r : kPbrtV4Named) {
         pstd::optional<Spectrum> s = GetNamedSpectrum(r.name);
         ASSERT_TRUE(s.has_value()) << r.name;
-        // 1 for the tables; for an illuminant, the ratio of the two luminance scales.
-        bool illuminant = std::string(r.name).find("illum") != std::string::npos;
-        Float scale = illuminant ? (*s)(kNamedLambdas[5]) / r.values[5] : 1;
-        EXPECT_NEAR(scale, 1, 5e-4f) << r.name;
         for (int i = 0; i < 10; ++i)
-            EXPECT_NEAR((*s)(kNamedLambdas[i]), scale * r.values[i], 2e-6f * r.values[i])
+            EXPECT_NEAR((*s)(kNamedLambdas[i]), r.values[i], 2e-6f * r.values[i])
                 << r.name << " at " << kNamedLambdas[i] << " nm";
     }
 }

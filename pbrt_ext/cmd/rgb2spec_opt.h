@@ -11,10 +11,11 @@
 // a colour close to a solved one has a solution close to it.
 //
 // What we do differently, and why:
-//  - The observer and D65 are ciedata.h's 380-780 nm tables (pbrt-v4: 360-830 nm), so the
+//  - The observer and D65 are ciedata.h's tables over 360-830 nm (pbrt-v4's own data), so the
 //    renderer, the generator and the tests integrate against the same data. Integration is
-//    Simpson's rule on 2.5 nm steps, aligned with the 5 nm table so that every panel integrates
-//    a smooth function (the interpolated data has kinks only at the 5 nm samples).
+//    Simpson's rule on 0.5 nm steps, aligned with the 1 nm matching functions (and the 5 nm D65)
+//    so that every panel integrates a smooth function (the interpolated data has kinks only at
+//    the samples).
 //  - The RGB -> XYZ matrix is built from the sRGB primaries and the white that the tabulated D65
 //    integrates to (as pbrt-v4's RGBColorSpace builds it), not the rounded standard matrix, so
 //    that the constant spectrum c is exactly the grey (c, c, c).
@@ -71,9 +72,9 @@ inline Vec3 NodeRGB(int maxc, int zi, int yi, int xi) {
 
 // ---- The fit -----------------------------------------------------------------------------------
 
-// The optimizer's wavelength variable t = (lambda - 380) / 400, in [0, 1] over the data; the
+// The optimizer's wavelength variable t = (lambda - 360) / 470, in [0, 1] over the data; the
 // polynomial is kept in t while solving, where its coefficients are of comparable size.
-constexpr double kLambdaMin = 380, kLambdaRange = 400;
+constexpr double kLambdaMin = 360, kLambdaRange = 470;
 // A guard against runaway steps, not a constraint the solutions meet: the largest coefficient in
 // the sRGB table is 3e4 (dark saturated blue). pbrt-v4 scales its coefficients back to 200, which
 // here left 5 % of the cells unconverged (dark saturated colours, up to 1e-2 off in linear RGB,
@@ -106,7 +107,7 @@ class SigmoidFit {
 
     // Primaries as CIE xy chromaticities; the white is D65 as tabulated in ciedata.h.
     SigmoidFit(std::array<double, 2> r, std::array<double, 2> g, std::array<double, 2> b) {
-        constexpr double h = 2.5;  // two Simpson subintervals per 5 nm sample
+        constexpr double h = 0.5;  // two Simpson subintervals per 1 nm sample
         double norm = 0;
         for (int n = 0; n < kNodes; ++n) {
             double lambda = kLambdaMin + h * n;
@@ -247,8 +248,8 @@ class SigmoidFit {
     static constexpr int kMaxIterations = 50, kMaxHalvings = 12;
 
   private:
-    static constexpr int kNodes = 161;  // 380-780 nm every 2.5 nm
-    static_assert((kNodes - 1) * 2.5 == kLambdaRange);
+    static constexpr int kNodes = 941;  // 360-830 nm every 0.5 nm
+    static_assert((kNodes - 1) * 0.5 == kLambdaRange);
 
     // Lab(target) - Lab(fit) and the derivative of Lab(fit) with respect to the coefficients.
     Vec3 Residual(const Vec3 &target, const Vec3 &abc, Mat3 *J) const {
