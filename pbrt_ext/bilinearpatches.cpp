@@ -204,12 +204,15 @@ bool BilinearPatch::IntersectP(const Ray &ray, Float tMax) const {
 
 Float BilinearPatch::AreaPDF(Point2f uv) const {
     auto [p00, p10, p01, p11] = Corners();
-    Float pdf = isRectangle ? 1 : BilinearPDF(uv, AreaWeights(p00, p10, p01, p11));
+    Float pdf = mesh->imageDistribution ? mesh->imageDistribution->PDF(uv)
+                : isRectangle          ? 1
+                                       : BilinearPDF(uv, AreaWeights(p00, p10, p01, p11));
     PatchTangents d = PatchDerivatives(uv, p00, p10, p01, p11);
     return pdf / Length(Cross(d.dpdu, d.dpdv));
 }
 
 pstd::optional<ShapeSample> BilinearPatch::Sample(Point2f u) const {
+    if (mesh->imageDistribution) return SampleAt(mesh->imageDistribution->Sample(u));
     auto [p00, p10, p01, p11] = Corners();
     return SampleAt(isRectangle ? u : SampleBilinear(u, AreaWeights(p00, p10, p01, p11)));
 }
@@ -239,9 +242,10 @@ pstd::optional<ShapeSample> BilinearPatch::SampleAt(Point2f uv) const {
 }
 
 // A rectangle's spherical rectangle from the receiver, or nothing where area sampling serves
-// (a patch that is not a rectangle, or a solid angle outside SampledBySolidAngle's range).
+// (a patch that is not a rectangle or samples an emission image, or a solid angle outside
+// SampledBySolidAngle's range).
 pstd::optional<SphericalRectangle> BilinearPatch::SphericalFrom(Point3f p) const {
-    if (!isRectangle)
+    if (!isRectangle || mesh->imageDistribution)
         return {};
     auto [p00, p10, p01, p11] = Corners();
     SphericalRectangle rectangle(p00, p10 - p00, p01 - p00, p);

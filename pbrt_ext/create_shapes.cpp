@@ -129,8 +129,32 @@ void AddPlyMesh(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearan
     }
 }
 
-void AddBilinearMesh(SceneBuilder &builder, const ShapeSceneEntity &e,
-                     const Appearance &a) {
+// pbrt-v4's "emissionfilename" on a bilinear mesh: the image's channel averages, t flipped as
+// the area light reads it, as the density of its patches' (u, v); as in pbrt-v4, ignored (with a
+// warning) where the mesh has its own "uv".
+std::shared_ptr<const PiecewiseConstant2D> EmissionDistribution(const ShapeSceneEntity &e, bool uvIsPatchUV,
+                                                                const std::string &folder) {
+    const ParameterDictionary &p = e.parameters;
+    std::string filename = p.GetOneString("emissionfilename", "");
+    if (filename.empty()) return nullptr;
+    if (!uvIsPatchUV) {
+        WarningAt(*p.Loc("emissionfilename"), "\"emissionfilename\" is ignored where \"uv\" is given, as in pbrt-v4");
+        return nullptr;
+    }
+    std::string path = ResolvePath(folder, filename);
+    if (!std::filesystem::is_regular_file(path))
+        throw ParseError(*p.Loc("emissionfilename"), "cannot open image \"" + filename + "\" (looked for " + path + ")");
+    Image image = Image::Read(path);
+    Point2i res = image.Resolution();
+    std::vector<Float> f(size_t(res.x) * size_t(res.y));
+    for (int y = 0; y < res.y; ++y)
+        for (int x = 0; x < res.x; ++x)
+            f[size_t(res.y - 1 - y) * size_t(res.x) + size_t(x)] = image.GetChannels(Point2i(x, y)).Average();
+    return std::make_shared<const PiecewiseConstant2D>(f, res.x, res.y);
+}
+
+void AddBilinearMesh(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearance &a,
+                     const std::string &folder) {
     const ParameterDictionary &p = e.parameters;
     std::vector<int> indices = p.GetIntArray("indices");
     std::vector<Point3f> P = p.GetPoint3fArray("P");
@@ -140,6 +164,7 @@ void AddBilinearMesh(SceneBuilder &builder, const ShapeSceneEntity &e,
         throw ParseError(e.loc, "bilinearmesh needs \"point3 P\" and \"integer indices\"");
     std::vector<Normal3f> N = p.GetNormal3fArray("N");
     std::vector<Point2f> uv = p.GetPoint2fArray("uv");
+    std::shared_ptr<const PiecewiseConstant2D> imageDistribution = EmissionDistribution(e, uv.empty(), folder);
     p.ReportUnused();
     CheckPrimitives(e, a, indices.size() / 4);
     auto mesh = AtShape(e, [&] {
@@ -147,6 +172,7 @@ void AddBilinearMesh(SceneBuilder &builder, const ShapeSceneEntity &e,
             MakeBilinearPatchMesh(e.worldFromObject, e.reverseOrientation, std::move(indices),
                                   std::move(P), std::move(N), std::move(uv)));
     });
+    mesh->imageDistribution = std::move(imageDistribution);
     builder.AddBilinearPatchMesh(std::move(mesh), a.material, a.emission, a.alpha);
 }
 
@@ -259,7 +285,7 @@ void AddShape(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
     if (e.name == "plymesh")
         return AddPlyMesh(builder, e, a, textures.Folder());
     if (e.name == "bilinearmesh")
-        return AddBilinearMesh(builder, e, a);
+        return AddBilinearMesh(builder, e, a, textures.Folder());
     if (e.name == "cylinder")
         return AddCylinder(builder, e, a);
     if (e.name == "sphere") {

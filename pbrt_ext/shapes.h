@@ -21,10 +21,12 @@
 #include "pbrt_ext/util/bounds.h"
 #include "pbrt_ext/util/math.h"
 #include "pbrt_ext/util/pstd.h"
+#include "pbrt_ext/util/sampling.h"
 #include "pbrt_ext/util/transform.h"
 #include "pbrt_ext/util/vecmath.h"
 
 #include <array>
+#include <memory>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -72,6 +74,9 @@ struct BilinearPatchMesh {
     std::vector<Normal3f> n;
     std::vector<Point2f> uv;
     bool reverseOrientation = false, transformSwapsHandedness = false;
+    // pbrt-v4's "emissionfilename": the patches' (u, v) are sampled in proportion to this
+    // distribution (an emission image's, t flipped as the area light reads it) instead of by area.
+    std::shared_ptr<const PiecewiseConstant2D> imageDistribution;
 
     int NumPatches() const { return int(indices.size() / 4); }
     std::string ToString() const;
