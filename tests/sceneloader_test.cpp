@@ -409,6 +409,7 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
         {"load_goniometric_square.pbrt",
          ":3:27: error: goniometric image is 3 x 2; expected a square equal-area diagram"},
         {"load_projection_filename.pbrt", ":3:1: error: LightSource \"projection\" needs \"string filename\""},
+        {"load_missing_emission_image.pbrt", ":3:64: error: cannot open image \"no-such.png\""},
         {"load_portal_rectangle.pbrt",
          ":3:40: error: portal is not a planar rectangle (its corners in order)"}};
     for (auto [name, expected] : cases) {
