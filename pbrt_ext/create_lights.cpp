@@ -37,6 +37,12 @@ Emission GetEmission(const ParameterDictionary &p, const std::string &name, cons
     return {TabulatedForLookup(s), nits > 0 ? 1 / nits : 0};
 }
 
+// What an image light's scale is divided by, so that its texels are 1 nit per unit of the
+// colour space's illuminant (pbrt-v4's SpectrumToPhotometric of the illuminant).
+Float IlluminantPhotometric(const RGBColorSpace &cs) {
+    return SpectrumToPhotometric(Spectrum::DenselySampled(cs.illuminant));
+}
+
 // The rotation taking +z to w (columns: a frame around w).
 Transform RotationFromZ(Vector3f w) {
     Frame f = Frame::FromZ(Normalize(w));
@@ -119,8 +125,9 @@ Float UpperHemisphereIlluminance(const Image &image, const RGBColorSpace &cs) {
     return Float(sum * 2 * Pi / (double(res.x) * res.y));
 }
 
-// An environment image (from "filename", or L's colour behind a portal), as pbrt-v4 reads it.
-Image EnvironmentImage(const TransformedSceneEntity &e, const std::string &filename, bool portal,
+// An environment image (from "filename", or L's colour behind a portal), as pbrt-v4 reads it:
+// square, for the equal-area octahedral mapping.
+Image EnvironmentImage(const TransformedSceneEntity &e, const std::string &filename,
                        const std::string &folder) {
     const ParameterDictionary &p = e.parameters;
     if (filename.empty())
@@ -129,7 +136,7 @@ Image EnvironmentImage(const TransformedSceneEntity &e, const std::string &filen
     if (p.HasParameter("L"))
         throw ParseError(*p.Loc("L"), "an infinite light takes \"L\" or \"filename\", not both");
     Image image = ReadLightImage(e, folder);
-    if (portal && image.Resolution().x != image.Resolution().y)
+    if (image.Resolution().x != image.Resolution().y)
         throw ParseError(*p.Loc("filename"), "environment image \"" + filename + "\" is " +
                                                  std::to_string(image.Resolution().x) + " x " +
                                                  std::to_string(image.Resolution().y) +
@@ -151,10 +158,10 @@ Light CreateInfiniteLight(const TransformedSceneEntity &e, Float scale,
         p.ReportUnused();
         return UniformInfiniteLight(L.spectrum, scale);
     }
-    Image image = EnvironmentImage(e, filename, portal.has_value(), folder);
+    Image image = EnvironmentImage(e, filename, folder);
     p.ReportUnused();
     const RGBColorSpace &cs = RGBColorSpace::sRGB();
-    scale /= SpectrumToPhotometric(Spectrum::DenselySampled(cs.illuminant));
+    scale /= IlluminantPhotometric(cs);
     if (illuminance > 0)
         scale *= illuminance / UpperHemisphereIlluminance(image, cs);
     if (portal)
@@ -193,7 +200,7 @@ Light CreateProjectionLight(const TransformedSceneEntity &e, Float scale, const 
     Image image = ReadLightImage(e, folder);
     p.ReportUnused();
     const RGBColorSpace &cs = RGBColorSpace::sRGB();
-    scale /= SpectrumToPhotometric(Spectrum::DenselySampled(cs.illuminant));
+    scale /= IlluminantPhotometric(cs);
     Transform worldFromLight = e.worldFromObject * Scale(1, -1, 1);
     ProjectionLight light(worldFromLight, std::move(image), &cs, scale, fov);
     if (power > 0) {
@@ -262,7 +269,7 @@ AreaLightDescription CreateAreaLight(const SceneEntity &e, const std::string &fo
         // pbrt-v4 makes an image's texels 1 nit per unit of the colour space's illuminant.
         const RGBColorSpace &cs = RGBColorSpace::sRGB();
         light.image = std::make_shared<const EmissionImage>(ReadLightImage(e, folder), &cs);
-        light.scale = p.GetOneFloat("scale", 1) / SpectrumToPhotometric(Spectrum::DenselySampled(cs.illuminant));
+        light.scale = p.GetOneFloat("scale", 1) / IlluminantPhotometric(cs);
     } else {
         Emission L = GetEmission(p, "L", folder);
         light.L = L.spectrum;

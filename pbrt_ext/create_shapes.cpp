@@ -146,10 +146,10 @@ std::shared_ptr<const PiecewiseConstant2D> EmissionDistribution(const ShapeScene
         throw ParseError(*p.Loc("emissionfilename"), "cannot open image \"" + filename + "\" (looked for " + path + ")");
     Image image = Image::Read(path);
     Point2i res = image.Resolution();
-    std::vector<Float> f(size_t(res.x) * size_t(res.y));
-    for (int y = 0; y < res.y; ++y)
-        for (int x = 0; x < res.x; ++x)
-            f[size_t(res.y - 1 - y) * size_t(res.x) + size_t(x)] = image.GetChannels(Point2i(x, y)).Average();
+    std::vector<Float> f = image.GetSamplingDistribution();
+    for (int y = 0; y < res.y / 2; ++y)  // t = 0 is the file's bottom row
+        std::swap_ranges(f.begin() + ptrdiff_t(y) * res.x, f.begin() + ptrdiff_t(y + 1) * res.x,
+                         f.end() - ptrdiff_t(y + 1) * res.x);
     return std::make_shared<const PiecewiseConstant2D>(f, res.x, res.y);
 }
 

@@ -12,19 +12,6 @@ namespace pbrt {
 
 namespace {
 
-// What arrives at ctx from a point light at the light-space origin whose intensity toward the
-// light-space direction w is I(w): I / r^2 along wi.
-template <typename Intensity>
-pstd::optional<LightLiSample> PointLightSample(const Transform &worldFromLight, LightSampleContext ctx,
-                                               Intensity I) {
-    Point3f p = worldFromLight(Point3f(0, 0, 0));
-    Float r2 = DistanceSquared(p, ctx.p);
-    if (r2 == 0) return {};
-    SampledSpectrum intensity = I(Normalize(worldFromLight.ApplyInverse(ctx.p - p)));
-    if (!intensity) return {};
-    return LightLiSample{intensity / r2, Normalize(p - ctx.p), 1, p, Normal3f(0, 0, 0)};
-}
-
 std::string Format(Point3f p) { return fmt::format("[ {}, {}, {} ]", p.x, p.y, p.z); }
 
 }  // namespace

@@ -86,16 +86,7 @@ SampledSpectrum SpotLight::Phi(const SampledWavelengths &lambda) const {
 
 pstd::optional<LightLiSample> SpotLight::SampleLi(LightSampleContext ctx, Point2f,
                                                   const SampledWavelengths &lambda, bool) const {
-    Point3f p = worldFromLight(Point3f(0, 0, 0));
-    Float r2 = DistanceSquared(p, ctx.p);
-    if (r2 == 0)
-        return {};
-    Vector3f wi = Normalize(p - ctx.p);
-    Vector3f wLight = Normalize(worldFromLight.ApplyInverse(-wi));
-    SampledSpectrum Li = I(wLight, lambda) / r2;
-    if (!Li)
-        return {};
-    return LightLiSample{Li, wi, 1, p, Normal3f(0, 0, 0)};
+    return PointLightSample(worldFromLight, ctx, [&](Vector3f w) { return I(w, lambda); });
 }
 
 // The axis with the full cone as the normals' spread, and the falloff band as emission spread.

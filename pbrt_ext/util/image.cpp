@@ -198,9 +198,7 @@ Image Image::Read(const std::string &path, ColorEncoding encoding, ImageChannels
 
 void Image::KeepBytes(const std::vector<float> &raw, int nChannels, std::array<int, 3> channel,
                       ColorEncoding encoding) {
-    // The table holds exactly what decoding each sample would give.
-    byteEncoding = encoding;
-    for (int b = 0; b < 256; ++b) toLinear[size_t(b)] = encoding.ToLinear(float(b) / 255);
+    SetByteEncoding(encoding);
     size_t n = size_t(resolution.x) * size_t(resolution.y), stride = size_t(nChannels);
     auto sample = [&](size_t i, int c) { return raw[i * stride + size_t(channel[c])]; };
     auto byteAt = [&](size_t i, int c) { return uint8_t(std::lround(sample(i, c) * 255)); };
@@ -211,6 +209,12 @@ void Image::KeepBytes(const std::vector<float> &raw, int nChannels, std::array<i
     bytes.resize(n * size_t(byteChannels));
     for (size_t i = 0; i < n; ++i)
         for (int c = 0; c < byteChannels; ++c) bytes[i * size_t(byteChannels) + size_t(c)] = byteAt(i, c);
+}
+
+void Image::SetByteEncoding(ColorEncoding encoding) {
+    // The table holds exactly what decoding each sample would give.
+    byteEncoding = encoding;
+    for (int b = 0; b < 256; ++b) toLinear[size_t(b)] = encoding.ToLinear(float(b) / 255);
 }
 
 void Image::SetChannel(Point2i p, int c, Float value) {
@@ -294,10 +298,7 @@ void Image::Write8Bit(const std::string &path, const std::string &tmpPath) const
     std::vector<Float> scratch;
     const std::vector<Float> &rgb = FloatRGB(scratch);
     std::vector<uint8_t> encoded(rgb.size());
-    for (size_t i = 0; i < rgb.size(); ++i) {
-        Float v = rgb[i] > 0 ? std::min<Float>(rgb[i], 1) : 0;  // NaN becomes 0 too
-        encoded[i] = uint8_t(std::lround(LinearToSRGB(v) * 255));
-    }
+    for (size_t i = 0; i < rgb.size(); ++i) encoded[i] = ColorEncoding::SRGB().ToByte(rgb[i]);
     try {
         if (LowercaseExtension(path) == ".png")
             WritePNG(tmpPath, resolution.x, resolution.y, encoded.data());

@@ -71,6 +71,11 @@ class ColorEncoding {
         default: return v;
         }
     }
+    // The 8-bit code of a linear value, clamped to [0, 1] first (NaN becomes 0).
+    uint8_t ToByte(Float v) const {
+        v = v > 0 ? std::min<Float>(v, 1) : 0;
+        return uint8_t(std::lround(FromLinear(v) * 255));
+    }
     // The name Get() accepts, e.g. "gamma 2.2"; also a cache key.
     std::string ToString() const;
     friend bool operator==(const ColorEncoding &a, const ColorEncoding &b) {
@@ -234,6 +239,14 @@ class Image {
                    ColorEncoding encoding);
     // A float image's pixels as bytes of encoding, one channel per pixel or three.
     Image EncodedAs8Bit(ColorEncoding encoding, int channels) const;
+    // The image as float RGB (an 8-bit image decoded).
+    Image AsFloat() const;
+    // A float image's pixel.
+    void SetRGB(Point2i p, RGB v) {
+        for (int c = 0; c < 3; ++c) pixels[3 * PixelIndex(p) + size_t(c)] = v[c];
+    }
+    // Bytes decode through encoding's table.
+    void SetByteEncoding(ColorEncoding encoding);
     // Half the resolution (at least 1): each texel the average of the 2x2 texels it covers.
     Image HalfResolution() const;
 

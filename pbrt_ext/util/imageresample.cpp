@@ -56,7 +56,7 @@ Image Image::FloatResizeUp(Point2i newRes, WrapMode2D wrapMode) const {
             const ResampleWeight &w = xWeights[size_t(x)];
             RGB v;
             for (int j = 0; j < 4; ++j) v += w.weight[j] * GetChannels(Point2i(w.firstPixel + j, y), wrapMode);
-            for (int c = 0; c < 3; ++c) rows.pixels[3 * rows.PixelIndex(Point2i(x, y)) + size_t(c)] = v[c];
+            rows.SetRGB(Point2i(x, y), v);
         }
     });
     Image result(newRes);
@@ -65,8 +65,7 @@ Image Image::FloatResizeUp(Point2i newRes, WrapMode2D wrapMode) const {
         for (int x = 0; x < newRes.x; ++x) {
             RGB v;
             for (int j = 0; j < 4; ++j) v += w.weight[j] * rows.GetChannels(Point2i(x, w.firstPixel + j), wrapMode);
-            for (int c = 0; c < 3; ++c)
-                result.pixels[3 * result.PixelIndex(Point2i(x, y)) + size_t(c)] = std::max<Float>(0, v[c]);
+            result.SetRGB(Point2i(x, y), ClampZero(v));
         }
     });
     return result;
@@ -82,7 +81,7 @@ Image Image::HalfResolution() const {
             int x0 = 2 * x, x1 = std::min(2 * x + 1, resolution.x - 1);
             RGB v = (GetChannels(Point2i(x0, y0)) + GetChannels(Point2i(x1, y0)) +
                      GetChannels(Point2i(x0, y1)) + GetChannels(Point2i(x1, y1))) / 4;
-            for (int c = 0; c < 3; ++c) half.pixels[3 * half.PixelIndex(Point2i(x, y)) + size_t(c)] = v[c];
+            half.SetRGB(Point2i(x, y), v);
         }
     });
     return half;
@@ -92,16 +91,20 @@ Image Image::EncodedAs8Bit(ColorEncoding encoding, int channels) const {
     Image image;
     image.resolution = resolution;
     image.byteChannels = channels;
-    image.byteEncoding = encoding;
-    for (int b = 0; b < 256; ++b) image.toLinear[size_t(b)] = encoding.ToLinear(float(b) / 255);
+    image.SetByteEncoding(encoding);
     size_t n = size_t(resolution.x) * size_t(resolution.y);
     image.bytes.resize(n * size_t(channels));
     for (size_t i = 0; i < n; ++i)
-        for (int c = 0; c < channels; ++c) {
-            Float v = pixels[3 * i + size_t(c)];
-            v = v > 0 ? std::min<Float>(v, 1) : 0;  // NaN becomes 0 too
-            image.bytes[i * size_t(channels) + size_t(c)] = uint8_t(std::lround(255 * encoding.FromLinear(v)));
-        }
+        for (int c = 0; c < channels; ++c)
+            image.bytes[i * size_t(channels) + size_t(c)] = encoding.ToByte(pixels[3 * i + size_t(c)]);
+    return image;
+}
+
+Image Image::AsFloat() const {
+    if (!Is8Bit()) return *this;
+    Image image;
+    image.resolution = resolution;
+    image.pixels = DecodeBytes();
     return image;
 }
 
@@ -123,8 +126,7 @@ std::vector<Image> Image::GeneratePyramid(Image image, WrapMode2D wrapMode) {
     } else {
         // Already a power of two: level 0 is the image itself (its bytes are what encoding
         // them again would give).
-        level = image.Is8Bit() ? Image(image.resolution) : image;
-        if (image.Is8Bit()) level.pixels = image.DecodeBytes();
+        level = image.AsFloat();
         pyramid.push_back(std::move(image));
     }
     int nLevels = std::bit_width(unsigned(std::max(level.resolution.x, level.resolution.y)));  // 1 + log2
