@@ -79,6 +79,9 @@ class ProjectiveCamera {
   public:
     const Transform &WorldFromCamera() const { return worldFromCamera.Start(); }
     const CameraMotion &Motion() const { return worldFromCamera; }
+    const Transform &CameraFromRaster() const { return cameraFromRaster; }
+    Float LensRadius() const { return lensRadius; }
+    Float FocalDistance() const { return focalDistance; }
 
   protected:
     ProjectiveCamera(CameraMotion worldFromCamera, Point2i fullResolution,
@@ -196,6 +199,10 @@ class Camera {
     }
     std::string ToString() const {
         return std::visit([](const auto &c) { return c.ToString(); }, camera);
+    }
+    template <typename T>
+    const T *CastOrNullptr() const {
+        return std::get_if<T>(&camera);
     }
 
   private:

@@ -42,6 +42,26 @@ RGBFilm::RGBFilm(Point2i fullResolution, Bounds2i pixelBounds, Filter filter, st
     pixels.resize(size_t(pixelBounds.Area()));
 }
 
+void RGBFilm::AddSplat(Point2f pFilm, const SampledSpectrum &L, const SampledWavelengths &lambda) {
+    RGB rgb = ClampedSensorRGB(L, lambda);
+    // The pixels whose centers lie within the filter's radius of pFilm.
+    Point2f pDiscrete = pFilm + Vector2f(0.5f, 0.5f);
+    Vector2f radius = filter.Radius();
+    Bounds2i splatBounds(Point2i(int(std::floor(pDiscrete.x - radius.x)), int(std::floor(pDiscrete.y - radius.y))),
+                         Point2i(int(std::floor(pDiscrete.x + radius.x)) + 1,
+                                 int(std::floor(pDiscrete.y + radius.y)) + 1));
+    splatBounds = Intersect(splatBounds, pixelBounds);
+    const Float invIntegral = 1 / filter.Integral();
+    for (Point2i p : splatBounds) {
+        Float wt = filter.Evaluate(Point2f(pFilm.x - p.x - 0.5f, pFilm.y - p.y - 0.5f)) * invIntegral;
+        if (wt == 0)
+            continue;
+        size_t index = PixelIndex(p);
+        for (int c = 0; c < 3; ++c)
+            splats[3 * index + c].Add(double(wt) * double(rgb[c]));
+    }
+}
+
 Image RGBFilm::GetImage() const {
     Vector2i size = pixelBounds.Diagonal();
     Image image(Point2i(size.x, size.y));

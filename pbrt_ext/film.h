@@ -1,4 +1,4 @@
-// The RGB film (pbrt-v4's RGBFilm, without splats).
+// The RGB film (pbrt-v4's RGBFilm).
 //
 // A sample's spectral radiance becomes the sensor's RGB (pbrt_ext/sensor.h: the CIE 1931 XYZ
 // observer by default, or a measured camera, scaled by the imaging ratio exposure time x ISO /
@@ -6,6 +6,11 @@
 // their ratio (filter importance sampling, pbrt-v4) taken to the output colour space. Only the
 // pixels in pixelBounds (the crop window) exist. AddSample needs no locks as long as concurrent
 // threads write distinct pixels, as tiles do.
+//
+// Splats are what paths traced from the lights contribute (bdpt's and lightpath's t = 1
+// strategies): they land wherever their ray meets the film, from any thread, so they go to
+// separate atomic sums, added to the pixel's value times the splat scale (pbrt-v4's splatScale:
+// one over the light paths per pixel).
 #pragma once
 
 #include "pbrt_ext/filters.h"
@@ -20,6 +25,7 @@
 #include "pbrt_ext/util/vecmath.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <optional>
 #include <string>
@@ -58,20 +64,34 @@ class RGBFilm {
     void AddSample(Point2i pPixel, const SampledSpectrum &L, const SampledWavelengths &lambda,
                    Float weight) {
         assert(InsideExclusive(pPixel, pixelBounds));
-        RGB rgb = sensor.ToSensorRGB(L, lambda);
-        Float m = std::max({rgb.r, rgb.g, rgb.b});
-        if (m > maxComponentValue) rgb *= maxComponentValue / m;
+        RGB rgb = ClampedSensorRGB(L, lambda);
         Pixel &pixel = pixels[PixelIndex(pPixel)];
         for (int c = 0; c < 3; ++c) pixel.rgbSum[c] += double(weight) * double(rgb[c]);
         pixel.weightSum += weight;
     }
 
-    // The weighted average in the output colour space; black where no sample landed.
+    // Makes room for splats (24 bytes a pixel); before rendering, from one thread.
+    void EnableSplats() { splats.resize(3 * pixels.size()); }
+    bool HasSplats() const { return !splats.empty(); }
+    // Spreads L, arriving at the film position pFilm (raster coordinates), over the pixels the
+    // filter covers, each by the filter's value there over its integral (pbrt-v4 divides by the
+    // integral when it reads the pixel), so that a splat adds what a camera sample of the same
+    // radiance would. Thread-safe.
+    void AddSplat(Point2f pFilm, const SampledSpectrum &L, const SampledWavelengths &lambda);
+    void SetSplatScale(Float scale) { splatScale = scale; }
+
+    // The weighted average in the output colour space, plus the scaled splats; black where
+    // nothing landed.
     RGB GetPixelRGB(Point2i p) const {
-        const Pixel &pixel = pixels[PixelIndex(p)];
-        if (pixel.weightSum == 0) return RGB(0, 0, 0);
-        RGB sensorRGB(Float(pixel.rgbSum[0] / pixel.weightSum), Float(pixel.rgbSum[1] / pixel.weightSum),
-                      Float(pixel.rgbSum[2] / pixel.weightSum));
+        const size_t index = PixelIndex(p);
+        const Pixel &pixel = pixels[index];
+        RGB sensorRGB(0, 0, 0);
+        if (pixel.weightSum != 0)
+            sensorRGB = RGB(Float(pixel.rgbSum[0] / pixel.weightSum), Float(pixel.rgbSum[1] / pixel.weightSum),
+                            Float(pixel.rgbSum[2] / pixel.weightSum));
+        if (!splats.empty())
+            for (int c = 0; c < 3; ++c)
+                sensorRGB[c] += Float(splatScale * splats[3 * index + c].Load());
         return Mul<RGB>(outputRGBFromSensorRGB, sensorRGB);
     }
 
@@ -88,6 +108,25 @@ class RGBFilm {
         double rgbSum[3] = {0, 0, 0};
         double weightSum = 0;
     };
+    // A copyable atomic sum (films are values).
+    struct AtomicSum {
+        AtomicSum() = default;
+        AtomicSum(const AtomicSum &other) : value(other.Load()) {}
+        AtomicSum &operator=(const AtomicSum &other) {
+            value.store(other.Load(), std::memory_order_relaxed);
+            return *this;
+        }
+        void Add(double v) { value.fetch_add(v, std::memory_order_relaxed); }
+        double Load() const { return value.load(std::memory_order_relaxed); }
+        std::atomic<double> value{0};
+    };
+    // The sensor's RGB of L, scaled down to maxComponentValue keeping its hue.
+    RGB ClampedSensorRGB(const SampledSpectrum &L, const SampledWavelengths &lambda) const {
+        RGB rgb = sensor.ToSensorRGB(L, lambda);
+        Float m = std::max({rgb.r, rgb.g, rgb.b});
+        if (m > maxComponentValue) rgb *= maxComponentValue / m;
+        return rgb;
+    }
 
     size_t PixelIndex(Point2i p) const {
         Vector2i o = p - pixelBounds.pMin;
@@ -103,6 +142,8 @@ class RGBFilm {
     const RGBColorSpace *colorSpace;
     SquareMatrix<3> outputRGBFromSensorRGB;
     std::vector<Pixel> pixels;
+    std::vector<AtomicSum> splats;  // 3 per pixel, or none
+    double splatScale = 1;
 };
 
 }  // namespace pbrt

@@ -31,6 +31,9 @@ class GoniometricLight {
                                            const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext, Vector3f, bool = false) const { return 0; }
+    pstd::optional<LightLeSample> SampleLe(Point2f u1, Point2f u2, const SampledWavelengths &lambda,
+                                           Float time) const;
+    LightLePDF PDF_Le(const Ray &ray) const;
     pstd::optional<LightBounds> Bounds() const;
     std::string ToString() const;
 
@@ -64,6 +67,9 @@ class ProjectionLight {
                                            const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext, Vector3f, bool = false) const { return 0; }
+    pstd::optional<LightLeSample> SampleLe(Point2f u1, Point2f u2, const SampledWavelengths &lambda,
+                                           Float time) const;
+    LightLePDF PDF_Le(const Ray &ray) const;
     pstd::optional<LightBounds> Bounds() const;
     std::string ToString() const;
 

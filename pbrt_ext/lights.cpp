@@ -116,8 +116,7 @@ DistantLight::DistantLight(const Transform &worldFromLight, Spectrum Lemit, Floa
     : wLight(Normalize(worldFromLight(Vector3f(0, 0, 1)))), Lemit(TabulatedForLookup(Lemit)), scale(scale) {}
 
 void DistantLight::Preprocess(const Bounds3f &sceneBounds) {
-    Point3f center;
-    sceneBounds.BoundingSphere(&center, &sceneRadius);
+    sceneBounds.BoundingSphere(&sceneCenter, &sceneRadius);
 }
 
 SampledSpectrum DistantLight::Phi(const SampledWavelengths &lambda) const {
@@ -196,7 +195,7 @@ pstd::optional<LightLiSample> DiffuseAreaLight::SampleLi(LightSampleContext ctx,
     SampledSpectrum Le = L(ss->intr.p, ss->intr.n, ss->intr.uv, -wi, lambda);
     if (!Le)
         return {};
-    return LightLiSample{Le, wi, ss->pdf, ss->intr.p, ss->intr.n};
+    return LightLiSample{Le, wi, ss->pdf, ss->intr.p, ss->intr.n, ss->intr.uv};
 }
 
 Float DiffuseAreaLight::PDF_Li(LightSampleContext ctx, Vector3f wi, bool) const {

@@ -56,6 +56,9 @@ class PointLight {
                                            const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext, Vector3f, bool = false) const { return 0; }
+    pstd::optional<LightLeSample> SampleLe(Point2f u1, Point2f u2, const SampledWavelengths &lambda,
+                                           Float time) const;
+    LightLePDF PDF_Le(const Ray &ray) const;
     pstd::optional<LightBounds> Bounds() const;
     std::string ToString() const;
 
@@ -79,6 +82,9 @@ class SpotLight {
                                            const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext, Vector3f, bool = false) const { return 0; }
+    pstd::optional<LightLeSample> SampleLe(Point2f u1, Point2f u2, const SampledWavelengths &lambda,
+                                           Float time) const;
+    LightLePDF PDF_Le(const Ray &ray) const;
     pstd::optional<LightBounds> Bounds() const;
     std::string ToString() const;
 
@@ -105,12 +111,16 @@ class DistantLight {
                                            const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext, Vector3f, bool = false) const { return 0; }
+    pstd::optional<LightLeSample> SampleLe(Point2f u1, Point2f u2, const SampledWavelengths &lambda,
+                                           Float time) const;
+    LightLePDF PDF_Le(const Ray &ray) const;
     std::string ToString() const;
 
   private:
     Vector3f wLight;  // unit, toward the light
     Spectrum Lemit;
     Float scale;
+    Point3f sceneCenter;
     Float sceneRadius = 0;
 };
 
@@ -142,6 +152,10 @@ class DiffuseAreaLight {
                                            const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext ctx, Vector3f wi, bool allowIncompletePDF = false) const;
+    pstd::optional<LightLeSample> SampleLe(Point2f u1, Point2f u2, const SampledWavelengths &lambda,
+                                           Float time) const;
+    // For a ray leaving the light's surface point p (normal n, parameters uv) toward w.
+    LightLePDF PDF_Le(Point3f p, Normal3f n, Point2f uv, Vector3f w) const;
     // Radiance leaving the surface point p with normal n toward w.
     SampledSpectrum L(Point3f p, Normal3f n, Point2f uv, Vector3f w,
                       const SampledWavelengths &lambda) const;
@@ -169,6 +183,9 @@ class UniformInfiniteLight {
                                            const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext ctx, Vector3f wi, bool allowIncompletePDF = false) const;
+    pstd::optional<LightLeSample> SampleLe(Point2f u1, Point2f u2, const SampledWavelengths &lambda,
+                                           Float time) const;
+    LightLePDF PDF_Le(const Ray &ray) const;
     SampledSpectrum Le(const Ray &ray, const SampledWavelengths &lambda) const;
     std::string ToString() const;
 
@@ -198,6 +215,9 @@ class ImageInfiniteLight {
                                            const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext ctx, Vector3f wi, bool allowIncompletePDF = false) const;
+    pstd::optional<LightLeSample> SampleLe(Point2f u1, Point2f u2, const SampledWavelengths &lambda,
+                                           Float time) const;
+    LightLePDF PDF_Le(const Ray &ray) const;
     SampledSpectrum Le(const Ray &ray, const SampledWavelengths &lambda) const;
     std::string ToString() const;
 
@@ -254,6 +274,29 @@ class Light {
     Float PDF_Li(LightSampleContext ctx, Vector3f wi, bool allowIncompletePDF = false) const {
         return std::visit([&](const auto &l) { return l.PDF_Li(ctx, wi, allowIncompletePDF); },
                           light);
+    }
+    // Emission sampling, for paths traced from the lights (bdpt, lightpath): a ray leaving the
+    // light, and the densities of a given one. PDF_Le(p, n, uv, w) is for area lights, whose rays
+    // leave their surface; PDF_Le(ray) for the others.
+    pstd::optional<LightLeSample> SampleLe(Point2f u1, Point2f u2, const SampledWavelengths &lambda,
+                                           Float time) const {
+        return std::visit([&](const auto &l) { return l.SampleLe(u1, u2, lambda, time); }, light);
+    }
+    LightLePDF PDF_Le(const Ray &ray) const {
+        return std::visit([&](const auto &l) {
+            if constexpr (requires { l.PDF_Le(ray); })
+                return l.PDF_Le(ray);
+            else
+                return LightLePDF{};
+        }, light);
+    }
+    LightLePDF PDF_Le(Point3f p, Normal3f n, Point2f uv, Vector3f w) const {
+        return std::visit([&](const auto &l) {
+            if constexpr (requires { l.PDF_Le(p, n, uv, w); })
+                return l.PDF_Le(p, n, uv, w);
+            else
+                return LightLePDF{};
+        }, light);
     }
     SampledSpectrum L(Point3f p, Normal3f n, Point2f uv, Vector3f w,
                       const SampledWavelengths &lambda) const {

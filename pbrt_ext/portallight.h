@@ -44,6 +44,9 @@ class PortalImageInfiniteLight {
                                            const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
     Float PDF_Li(LightSampleContext ctx, Vector3f wi, bool allowIncompletePDF = false) const;
+    pstd::optional<LightLeSample> SampleLe(Point2f u1, Point2f u2, const SampledWavelengths &lambda,
+                                           Float time) const;
+    LightLePDF PDF_Le(const Ray &ray) const;
     SampledSpectrum Le(const Ray &ray, const SampledWavelengths &lambda) const;
     std::string ToString() const;
 

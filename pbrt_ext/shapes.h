@@ -108,6 +108,7 @@ class Triangle {
     pstd::optional<ShapeSample> Sample(Point2f u) const;
     pstd::optional<ShapeSample> Sample(const ShapeSampleContext &ctx, Point2f u) const;
     Float PDF(const ShapeSampleContext &ctx, Vector3f wi) const;
+    Float PDF(Point3f, Point2f) const { return 1 / Area(); }
     std::string ToString() const;
 
     // The full interaction at barycentrics b (p = b0 p0 + b1 p1 + b2 p2), seen from direction wo
@@ -147,6 +148,7 @@ class Sphere {
     pstd::optional<ShapeSample> Sample(const ShapeSampleContext &ctx, Point2f u) const;
     Float PDF(const ShapeSampleContext &ctx, Vector3f wi) const;
     std::string ToString() const;
+    Float PDF(Point3f p, Point2f) const { return AreaPDF(objectFromWorld(p)); }
 
     Bounds3f Bounds() const;
 
@@ -185,6 +187,7 @@ class Cylinder {
     pstd::optional<ShapeSample> Sample(const ShapeSampleContext &ctx, Point2f u) const;
     Float PDF(const ShapeSampleContext &ctx, Vector3f wi) const;
     std::string ToString() const;
+    Float PDF(Point3f p, Point2f) const { return AreaPDF(objectFromWorld(p)); }
 
     Bounds3f Bounds() const;
 
@@ -216,6 +219,7 @@ class Disk {
     pstd::optional<ShapeSample> Sample(const ShapeSampleContext &ctx, Point2f u) const;
     Float PDF(const ShapeSampleContext &ctx, Vector3f wi) const;
     std::string ToString() const;
+    Float PDF(Point3f, Point2f) const { return 1 / Area(); }
 
     Bounds3f Bounds() const;
 
@@ -256,6 +260,7 @@ class BilinearPatch {
     pstd::optional<ShapeSample> Sample(Point2f u) const;
     pstd::optional<ShapeSample> Sample(const ShapeSampleContext &ctx, Point2f u) const;
     Float PDF(const ShapeSampleContext &ctx, Vector3f wi) const;
+    Float PDF(Point3f, Point2f uv) const { return AreaPDF(uv); }
     std::string ToString() const;
 
     // The full interaction at patch parameters uv; shared with the Embree aggregate.
@@ -305,6 +310,10 @@ class Shape {
     }
     Float PDF(const ShapeSampleContext &ctx, Vector3f wi) const {
         return std::visit([&](const auto &s) { return s.PDF(ctx, wi); }, shape);
+    }
+    // The area density with which Sample(u) draws the surface point p whose parameters are uv.
+    Float PDF(Point3f p, Point2f uv) const {
+        return std::visit([&](const auto &s) { return s.PDF(p, uv); }, shape);
     }
     std::string ToString() const {
         return std::visit([](const auto &s) { return s.ToString(); }, shape);

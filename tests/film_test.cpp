@@ -139,6 +139,53 @@ TEST(Film, DisjointTilesNeedNoLocks) {
     for (Point2i p : all) ASSERT_EQ(parallel.GetPixelRGB(p), serial.GetPixelRGB(p));
 }
 
+// Splats from many threads into one pixel all arrive: the sum is exact (each adds 1, which
+// doubles sum without rounding).
+TEST(Film, ConcurrentSplatsToOnePixelLoseNothing) {
+    Point2i res(4, 4);
+    RGBFilm film(res, Bounds2i(Point2i(0, 0), res), BoxFilter(), "unused.exr");
+    film.EnableSplats();
+    const SampledSpectrum L(1.f);
+    const RGB one = film.Sensor().ToSensorRGB(L, kLambda);
+    const int threads = 8, perThread = 100000;
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t)
+        pool.emplace_back([&] {
+            for (int i = 0; i < perThread; ++i)
+                film.AddSplat(Point2f(2.25f, 1.75f), L, kLambda);
+        });
+    for (std::thread &t : pool) t.join();
+    // The splat scale of one splat per pixel leaves the total: the pixel holds all of them.
+    film.SetSplatScale(1.0 / (double(threads) * perThread));
+    RGBFilm reference(res, Bounds2i(Point2i(0, 0), res), BoxFilter(), "unused.exr");
+    reference.EnableSplats();
+    reference.AddSplat(Point2f(2.25f, 1.75f), L, kLambda);
+    for (Point2i p : Bounds2i(Point2i(0, 0), res))
+        EXPECT_EQ(film.GetPixelRGB(p), reference.GetPixelRGB(p)) << p.x << ", " << p.y;
+    EXPECT_GT(reference.GetPixelRGB(Point2i(2, 1)).Average(), 0);
+    EXPECT_GT(one.Average(), 0);
+}
+
+// A splat spreads over the pixels the filter covers by the filter's normalized weights: its
+// total over the film is what a camera sample of the same radiance adds to its pixel.
+TEST(Film, SplatSpreadsByTheNormalizedFilter) {
+    Point2i res(16, 16);
+    Bounds2i all(Point2i(0, 0), res);
+    for (Filter filter : {Filter(BoxFilter()), Filter(GaussianFilter()), Filter(MitchellFilter())}) {
+        RGBFilm splatted(res, all, filter, "unused.exr"), sampled(res, all, filter, "unused.exr");
+        splatted.EnableSplats();
+        const SampledSpectrum L(0.5f, 1.f, 2.f, 0.25f);
+        splatted.AddSplat(Point2f(7.3f, 8.9f), L, kLambda);
+        sampled.AddSample(Point2i(7, 8), L, kLambda, 1);
+        double total = 0;
+        for (Point2i p : all)
+            total += splatted.GetPixelRGB(p).Average();
+        EXPECT_NEAR(total, sampled.GetPixelRGB(Point2i(7, 8)).Average(),
+                    0.02 * sampled.GetPixelRGB(Point2i(7, 8)).Average())
+            << filter.ToString();
+    }
+}
+
 TEST(Film, WritesOnlyThePixelBounds) {
     fs::path dir = fs::temp_directory_path() / ("pbrt_film_test_" + std::to_string(::getpid()));
     fs::create_directories(dir);
