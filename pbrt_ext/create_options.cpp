@@ -365,12 +365,20 @@ std::optional<std::string> SamplerNameError(const std::string &name) {
 PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrides &overrides,
                                        std::string *lightSampler) {
     const ParameterDictionary &p = e.parameters;
-    bool supported = e.name.empty() || e.name == "path" || e.name == "volpath";
-    // The others (bdpt, sppm, ...) render media too in pbrt-v4: volpath comes closest.
+    bool supported = e.name.empty() || e.name == "path" || e.name == "volpath" ||
+                     e.name == "bdpt" || e.name == "lightpath";
+    // The others (sppm, ...) render media too in pbrt-v4: volpath comes closest.
     if (!supported)
         Substitute(e, "Integrator", "\"volpath\"");
     PathIntegratorOptions options;
-    options.volumetric = e.name != "path";
+    options.type = e.name == "path"        ? IntegratorType::Path
+                   : e.name == "bdpt"      ? IntegratorType::BDPT
+                   : e.name == "lightpath" ? IntegratorType::LightPath
+                                           : IntegratorType::VolPath;
+    if (options.type == IntegratorType::BDPT) {
+        options.visualizeStrategies = p.GetOneBool("visualizestrategies", false);
+        options.visualizeWeights = p.GetOneBool("visualizeweights", false);
+    }
     options.maxDepth = p.GetOneInt("maxdepth", 5);
     options.regularize = p.GetOneBool("regularize", false);
     options.strategy = overrides.strategy.value_or(PathStrategy::MIS);

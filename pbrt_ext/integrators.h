@@ -27,14 +27,24 @@ std::string ToString(PathStrategy strategy);
 // "mis", "bsdf" or "light"; throws std::invalid_argument naming the accepted values otherwise.
 PathStrategy ParsePathStrategy(const std::string &name);
 
+// The integrators of pbrt-v4 that we have, by their scene-file names.
+enum class IntegratorType {
+    Path,      // "path": media ignored, as in pbrt-v4
+    VolPath,   // "volpath" (pbrt-v4's default): media are rendered by the VolPathIntegrator. A
+               // scene without media needs none of it and is rendered by the path tracer,
+               // which estimates the same image.
+    BDPT,      // "bdpt": bidirectional path tracing (bdpt.h)
+    LightPath  // "lightpath": paths traced from the lights only (lightpath.h)
+};
+
 struct PathIntegratorOptions {
     int maxDepth = 5;
     bool regularize = false;
     PathStrategy strategy = PathStrategy::MIS;
-    // pbrt-v4's "volpath" (its default integrator) rather than "path": media are rendered by
-    // the VolPathIntegrator. A scene without media needs none of it and is rendered by the
-    // path tracer, which estimates the same image.
-    bool volumetric = false;
+    IntegratorType type = IntegratorType::Path;
+    // bdpt: also write each (s, t) strategy's image, unweighted (visualizeStrategies) or
+    // weighted by MIS (visualizeWeights), beside the film's file (pbrt-v4's bdpt_dDD_sSS_tTT).
+    bool visualizeStrategies = false, visualizeWeights = false;
     // VolPathIntegrator only: weigh wavelengths by spectral MIS (pbrt-v4), or follow the hero
     // wavelength's probabilities alone (to measure what spectral MIS gains).
     bool spectralMIS = true;

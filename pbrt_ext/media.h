@@ -64,6 +64,18 @@ struct MediumProperties {
     SampledSpectrum Le;
 };
 
+// A scattering event inside a medium (pbrt-v4's MediumInteraction).
+struct MediumInteraction {
+    Point3f p;
+    Vector3f wo;  // toward where the path came from, unit
+    int medium;
+    HGPhaseFunction phase;
+    Float time;
+
+    Ray SpawnRay(Vector3f w) const { return Ray(p, w, medium, time); }
+    Ray SpawnRayTo(Point3f p2) const { return Ray(p, p2 - p, medium, time); }
+};
+
 // A stretch [tMin, tMax] of a ray (unit direction) over which sigma_t <= sigma_maj.
 struct RayMajorantSegment {
     Float tMin, tMax;

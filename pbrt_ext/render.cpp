@@ -1,6 +1,8 @@
 #include "pbrt_ext/render.h"
 
+#include "pbrt_ext/bdpt.h"
 #include "pbrt_ext/integrators.h"
+#include "pbrt_ext/lightpath.h"
 #include "pbrt_ext/scene.h"
 #include "pbrt_ext/volpath.h"
 #include "pbrt_ext/util/log.h"
@@ -100,7 +102,10 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
             SampledSpectrum L(0.f);
             if (cr) {
                 cr->ray.medium = scene.cameraMedium;
-                L = cr->weight * integrator.Li(cr->ray, lambda, sampler, counts.rays);
+                if constexpr (requires { integrator.Li(cr->ray, cs.pFilm, lambda, sampler, counts.rays); })
+                    L = cr->weight * integrator.Li(cr->ray, cs.pFilm, lambda, sampler, counts.rays);
+                else
+                    L = cr->weight * integrator.Li(cr->ray, lambda, sampler, counts.rays);
             }
             if (!IsValidRadiance(L)) {
                 ++counts.discarded;
@@ -108,6 +113,37 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
             }
             scene.film.AddSample(p, L, lambda, cs.filterWeight);
         }
+}
+
+using Integrator = std::variant<PathIntegrator, VolPathIntegrator, BDPTIntegrator, LightPathIntegrator>;
+
+Integrator ChooseIntegrator(Scene &scene) {
+    const PathIntegratorOptions &o = scene.integratorOptions;
+    switch (o.type) {
+    case IntegratorType::BDPT:
+        return BDPTIntegrator(scene, o);
+    case IntegratorType::LightPath:
+        return LightPathIntegrator(scene, o);
+    case IntegratorType::VolPath:
+        // The volumetric path tracer only where there are media to render.
+        if (!scene.media.empty())
+            return VolPathIntegrator(scene, o);
+        [[fallthrough]];
+    case IntegratorType::Path:
+        break;
+    }
+    return PathIntegrator(scene, o);
+}
+
+Integrator MakeIntegrator(Scene &scene, const RenderOptions &options) {
+    Integrator integrator = ChooseIntegrator(scene);
+    PathStrategy strategy = scene.integratorOptions.strategy;
+    if (strategy != PathStrategy::MIS && !std::holds_alternative<PathIntegrator>(integrator) &&
+        !options.quiet)
+        Warning("--strategy %s applies to the path integrator; the others combine their "
+                "estimators by MIS",
+                ToString(strategy).c_str());
+    return integrator;
 }
 
 }  // namespace
@@ -128,16 +164,7 @@ RenderStatistics Render(Scene &scene, const RenderOptions &options) {
     if (options.nThreads > 0)
         threads = std::make_unique<tbb::global_control>(
             tbb::global_control::max_allowed_parallelism, options.nThreads);
-    // The volumetric path tracer only where there are media to render.
-    using Integrator = std::variant<PathIntegrator, VolPathIntegrator>;
-    const bool volumetric = scene.integratorOptions.volumetric && !scene.media.empty();
-    if (volumetric && scene.integratorOptions.strategy != PathStrategy::MIS && !options.quiet)
-        Warning("--strategy %s applies to the path integrator; volpath combines its estimators "
-                "by MIS",
-                ToString(scene.integratorOptions.strategy).c_str());
-    const Integrator integrator =
-        volumetric ? Integrator(VolPathIntegrator(scene, scene.integratorOptions))
-                   : Integrator(PathIntegrator(scene, scene.integratorOptions));
+    const Integrator integrator = MakeIntegrator(scene, options);
     const Bounds2i pixels = scene.film.PixelBounds();
     const std::vector<Bounds2i> tiles = Tiles(pixels);
     std::vector<int> tileSamples(tiles.size(), 0);  // every pixel of tile t has [0, tileSamples[t])
@@ -176,7 +203,14 @@ RenderStatistics Render(Scene &scene, const RenderOptions &options) {
     stats.cancelled = stats.samplesPerPixel < spp && Cancelled(options);
     for (size_t t = 0; t < tiles.size(); ++t)
         stats.cameraSamples += int64_t(tiles[t].Area()) * tileSamples[t];
-    for (const ThreadCounts &c : counts) {
+    // Splats came from one light path per camera sample, spread over the pixels.
+    if (stats.cameraSamples > 0) {
+        Float splatScale = Float(double(pixels.Area()) / double(stats.cameraSamples));
+        scene.film.SetSplatScale(splatScale);
+        if (const BDPTIntegrator *bdpt = std::get_if<BDPTIntegrator>(&integrator))
+            bdpt->WriteStrategyImages(splatScale);
+    }
+        for (const ThreadCounts &c : counts) {
         stats.closestRays += c.rays.closest;
         stats.shadowRays += c.rays.shadow;
         stats.discardedSamples += c.discarded;

@@ -7,7 +7,7 @@
 namespace pbrt {
 
 SceneBuilder::SceneBuilder(Camera camera, RGBFilm film, Sampler sampler)
-    : scene(new Scene{EmbreeAggregate(), {}, {}, {}, LightSampler(UniformLightSampler({})),
+    : scene(new Scene{EmbreeAggregate(), {}, {}, {}, {}, LightSampler(UniformLightSampler({})),
                       std::move(camera), {}, false, false, std::move(film), std::move(sampler),
                       {}, {}, -1}) {}
 
@@ -38,6 +38,7 @@ int SceneBuilder::AddAreaLights(const AreaLightDescription &emission, int count,
         }
         scene->lights.push_back(
             DiffuseAreaLight(std::move(shape), emission.L, scale, emission.twoSided, emission.image));
+        scene->lightMediumInterfaces.push_back(currentMediumInterface);
     }
     return first;
 }
@@ -140,7 +141,11 @@ void SceneBuilder::AddObjectInstance(const std::string &name,
     scene->aggregate.AddInstance(it->second, worldFromInstance);
 }
 
-void SceneBuilder::AddLight(Light light) { scene->lights.push_back(std::move(light)); }
+void SceneBuilder::AddLight(Light light, int medium) {
+    CheckMedium(medium);
+    scene->lights.push_back(std::move(light));
+    scene->lightMediumInterfaces.push_back(MediumInterface(medium, medium));
+}
 
 int SceneBuilder::AddMedium(Medium medium) {
     scene->media.push_back(std::move(medium));

@@ -78,6 +78,9 @@ class Scene {
     std::vector<Material> materials;
     std::vector<Light> lights;
     std::vector<int> infiniteLights;  // indices into lights: the ones escaping rays look up
+    // Per light, the media around it: where rays leaving it start (an area light's shape's
+    // interface; a point or infinite light is outside, in the medium in force at its directive).
+    std::vector<MediumInterface> lightMediumInterfaces;
     LightSampler lightSampler;
     Camera camera;
     CameraDifferentials cameraDifferentials;
@@ -146,8 +149,9 @@ class SceneBuilder {
         AddObjectInstance(name, AnimatedTransform(worldFromInstance));
     }
 
-    // Lights that are not attached to shapes: point, spot, distant, infinite.
-    void AddLight(Light light);
+    // Lights that are not attached to shapes: point, spot, distant, infinite; medium: the one
+    // they are in (-1: vacuum).
+    void AddLight(Light light, int medium = -1);
 
     // Participating media, referred to by the index AddMedium returns. Shapes added after
     // SetMediumInterface bound the media it names (pbrt-v4's MediumInterface directive); the

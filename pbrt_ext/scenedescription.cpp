@@ -417,10 +417,12 @@ void BasicSceneBuilder::NamedMaterial(const std::string &name, FileLoc loc) {
 void BasicSceneBuilder::LightSource(const std::string &name, ParsedParameterVector params,
                                     FileLoc loc) {
     VerifyWorld("LightSource", loc);
-    scene->lights.push_back(TransformedSceneEntity(
-        SceneEntity(name, ParameterDictionary(std::move(params), graphicsState.lightAttributes),
-                    loc),
-        StaticCTM("lights", loc)));
+    scene->lights.push_back(LightSceneEntity(
+        TransformedSceneEntity(
+            SceneEntity(name, ParameterDictionary(std::move(params), graphicsState.lightAttributes),
+                        loc),
+            StaticCTM("lights", loc)),
+        graphicsState.outsideMedium));
 }
 
 void BasicSceneBuilder::AreaLightSource(const std::string &name, ParsedParameterVector params,

@@ -42,6 +42,15 @@ struct TransformedSceneEntity : SceneEntity {
     Transform worldFromObject;
 };
 
+// A light source: the medium in force at its directive is the one it is in.
+struct LightSceneEntity : TransformedSceneEntity {
+    LightSceneEntity() = default;
+    LightSceneEntity(TransformedSceneEntity entity, std::string medium)
+        : TransformedSceneEntity(std::move(entity)), medium(std::move(medium)) {}
+
+    std::string medium;  // empty: vacuum
+};
+
 // The CTM at the start and the end of the shutter interval (pbrt-v4's TransformSet): the two
 // differ for what moves.
 struct TransformSet {
@@ -103,7 +112,7 @@ struct SceneDescription {
     // The world. Shapes inside object definitions are listed too (insideObject set); only
     // instances place them.
     std::vector<ShapeSceneEntity> shapes;
-    std::vector<TransformedSceneEntity> lights;
+    std::vector<LightSceneEntity> lights;
     // Anonymous materials in the order of their Material directives; materials[0] is pbrt-v4's
     // default "diffuse", the material of shapes before any Material directive.
     std::vector<SceneEntity> materials;

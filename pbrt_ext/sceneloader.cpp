@@ -183,6 +183,13 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
     Sampler sampler = CreateSampler(scene.sampler, film.FullResolution(), overrides);
     std::string lightSampler;
     PathIntegratorOptions integrator = CreateIntegrator(scene.integrator, overrides, &lightSampler);
+    // Paths traced from the lights need the camera's importance, which pbrt-v4 gives the
+    // perspective camera only.
+    bool fromLights = integrator.type == IntegratorType::BDPT || integrator.type == IntegratorType::LightPath;
+    if (fromLights && !camera.CastOrNullptr<PerspectiveCamera>())
+        throw ParseError(scene.integrator.loc, "Integrator \"" + scene.integrator.name +
+                                                   "\" needs a perspective camera, not \"" +
+                                                   camera.Name() + "\"");
 
     SceneBuilder builder(std::move(camera), std::move(film), std::move(sampler));
     builder.SetIntegrator(integrator);
@@ -200,9 +207,9 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
     AddShapes(scene, worldShapes, builder, resolvers);
     AddInstances(scene, builder, resolvers);
     if (textures.ReadsFootprint()) builder.RequireRayDifferentials();
-    for (const TransformedSceneEntity &light : scene.lights)
+    for (const LightSceneEntity &light : scene.lights)
         if (std::optional<Light> l = CreateLight(light, folder))
-            builder.AddLight(std::move(*l));
+            builder.AddLight(std::move(*l), media.For(light.medium));
     return builder.Build();
 }
 

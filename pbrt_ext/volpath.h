@@ -20,18 +20,6 @@ namespace pbrt {
 
 class Scene;
 
-// A scattering event inside a medium (pbrt-v4's MediumInteraction).
-struct MediumInteraction {
-    Point3f p;
-    Vector3f wo;  // toward where the path came from, unit
-    int medium;
-    HGPhaseFunction phase;
-    Float time;
-
-    Ray SpawnRay(Vector3f w) const { return Ray(p, w, medium, time); }
-    Ray SpawnRayTo(Point3f p2) const { return Ray(p, p2 - p, medium, time); }
-};
-
 class VolPathIntegrator {
   public:
     // options.strategy must be MIS (volpath combines its estimators only that way).

@@ -411,7 +411,10 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
         {"load_projection_filename.pbrt", ":3:1: error: LightSource \"projection\" needs \"string filename\""},
         {"load_missing_emission_image.pbrt", ":3:64: error: cannot open image \"no-such.png\""},
         {"load_portal_rectangle.pbrt",
-         ":3:40: error: portal is not a planar rectangle (its corners in order)"}};
+         ":3:40: error: portal is not a planar rectangle (its corners in order)"},
+        // Paths traced from the lights need the camera's importance.
+        {"load_bdpt_camera.pbrt",
+         ":1:1: error: Integrator \"bdpt\" needs a perspective camera, not \"orthographic\""}};
     for (auto [name, expected] : cases) {
         std::string file = std::string(PBRT_EXT_TEST_DATA_DIR) + "/bad/" + name;
         std::string error = LoadError(file);
@@ -452,7 +455,7 @@ AttributeEnd
     std::unique_ptr<Scene> scene = LoadScene(file, Quick());
     ASSERT_EQ(scene->media.size(), 2u);  // "unused" (a missing file) was never read
     EXPECT_EQ(scene->cameraMedium, 0);   // "air", made first for the camera
-    EXPECT_TRUE(scene->integratorOptions.volumetric);  // pbrt-v4's default integrator
+    EXPECT_EQ(scene->integratorOptions.type, IntegratorType::VolPath);  // pbrt-v4's default integrator
     pstd::optional<ShapeIntersection> hit =
         scene->Intersect(Ray(Point3f(2, 0, 5), Vector3f(0, 0, -1), 0));
     ASSERT_TRUE(hit);

@@ -86,7 +86,7 @@ Estimate EstimateLi(const Integrator &integrator, const Ray &ray, int n, int see
 PathIntegratorOptions VolPath(int maxDepth) {
     PathIntegratorOptions options;
     options.maxDepth = maxDepth;
-    options.volumetric = true;
+    options.type = IntegratorType::VolPath;
     return options;
 }
 
