@@ -366,18 +366,26 @@ PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrid
                                        std::string *lightSampler) {
     const ParameterDictionary &p = e.parameters;
     bool supported = e.name.empty() || e.name == "path" || e.name == "volpath" ||
-                     e.name == "bdpt" || e.name == "lightpath";
-    // The others (sppm, ...) render media too in pbrt-v4: volpath comes closest.
+                     e.name == "bdpt" || e.name == "lightpath" || e.name == "sppm";
+    // The others (mlt, ambientocclusion, ...): volpath comes closest.
     if (!supported)
         Substitute(e, "Integrator", "\"volpath\"");
     PathIntegratorOptions options;
     options.type = e.name == "path"        ? IntegratorType::Path
                    : e.name == "bdpt"      ? IntegratorType::BDPT
                    : e.name == "lightpath" ? IntegratorType::LightPath
+                   : e.name == "sppm"      ? IntegratorType::SPPM
                                            : IntegratorType::VolPath;
     if (options.type == IntegratorType::BDPT) {
         options.visualizeStrategies = p.GetOneBool("visualizestrategies", false);
         options.visualizeWeights = p.GetOneBool("visualizeweights", false);
+    }
+    if (options.type == IntegratorType::SPPM) {
+        options.photonsPerIteration = p.GetOneInt("photonsperiteration", -1);
+        options.initialRadius = p.GetOneFloat("radius", 1);
+        if (!(options.initialRadius > 0))
+            throw ParseError(*p.Loc("radius"), "sppm \"radius\" must be positive");
+        options.photonSeed = p.GetOneInt("seed", overrides.seed);
     }
     options.maxDepth = p.GetOneInt("maxdepth", 5);
     options.regularize = p.GetOneBool("regularize", false);

@@ -63,8 +63,11 @@ class RGBFilm {
     // is the filter sample's.
     void AddSample(Point2i pPixel, const SampledSpectrum &L, const SampledWavelengths &lambda,
                    Float weight) {
+        AddSensorRGB(pPixel, ClampedSensorRGB(L, lambda), weight);
+    }
+    // A sample already in the sensor's RGB (sppm's pixel estimates).
+    void AddSensorRGB(Point2i pPixel, RGB rgb, Float weight) {
         assert(InsideExclusive(pPixel, pixelBounds));
-        RGB rgb = ClampedSensorRGB(L, lambda);
         Pixel &pixel = pixels[PixelIndex(pPixel)];
         for (int c = 0; c < 3; ++c) pixel.rgbSum[c] += double(weight) * double(rgb[c]);
         pixel.weightSum += weight;

@@ -33,8 +33,9 @@ enum class IntegratorType {
     VolPath,   // "volpath" (pbrt-v4's default): media are rendered by the VolPathIntegrator. A
                // scene without media needs none of it and is rendered by the path tracer,
                // which estimates the same image.
-    BDPT,      // "bdpt": bidirectional path tracing (bdpt.h)
-    LightPath  // "lightpath": paths traced from the lights only (lightpath.h)
+    BDPT,       // "bdpt": bidirectional path tracing (bdpt.h)
+    LightPath,  // "lightpath": paths traced from the lights only (lightpath.h)
+    SPPM        // "sppm": stochastic progressive photon mapping (sppm.h)
 };
 
 struct PathIntegratorOptions {
@@ -45,6 +46,11 @@ struct PathIntegratorOptions {
     // bdpt: also write each (s, t) strategy's image, unweighted (visualizeStrategies) or
     // weighted by MIS (visualizeWeights), beside the film's file (pbrt-v4's bdpt_dDD_sSS_tTT).
     bool visualizeStrategies = false, visualizeWeights = false;
+    // sppm: photons per iteration (the film's pixel count if not positive), the visible
+    // points' initial search radius, and the seed of the photons' Halton points.
+    int64_t photonsPerIteration = -1;
+    Float initialRadius = 1;
+    int photonSeed = 0;
     // VolPathIntegrator only: weigh wavelengths by spectral MIS (pbrt-v4), or follow the hero
     // wavelength's probabilities alone (to measure what spectral MIS gains).
     bool spectralMIS = true;

@@ -3,6 +3,7 @@
 #include "pbrt_ext/bdpt.h"
 #include "pbrt_ext/integrators.h"
 #include "pbrt_ext/lightpath.h"
+#include "pbrt_ext/sppm.h"
 #include "pbrt_ext/scene.h"
 #include "pbrt_ext/volpath.h"
 #include "pbrt_ext/util/log.h"
@@ -124,6 +125,7 @@ Integrator ChooseIntegrator(Scene &scene) {
         return BDPTIntegrator(scene, o);
     case IntegratorType::LightPath:
         return LightPathIntegrator(scene, o);
+    case IntegratorType::SPPM:  // rendered by RenderSPPM
     case IntegratorType::VolPath:
         // The volumetric path tracer only where there are media to render.
         if (!scene.media.empty())
@@ -160,6 +162,8 @@ std::string RenderStatistics::ToString() const {
 }
 
 RenderStatistics Render(Scene &scene, const RenderOptions &options) {
+    if (scene.integratorOptions.type == IntegratorType::SPPM)
+        return RenderSPPM(scene, options);  // iterations of camera paths and photons
     std::unique_ptr<tbb::global_control> threads;
     if (options.nThreads > 0)
         threads = std::make_unique<tbb::global_control>(
