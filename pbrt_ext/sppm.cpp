@@ -220,9 +220,9 @@ void SPPM::TraceCameraPath(Point2i pPixel, int iteration, SampledWavelengths lam
     SampledSpectrum beta = cr->weight, L(0.f);
     SPPMPixel &pixel = PixelAt(pPixel);
     Float etaScale = 1, pdfBSDF = 1;
-    bool specularBounce = true;
+    bool specularBounce = true, haveVisiblePoint = false;
     LightSampleContext prevCtx;
-    for (int depth = 0;; ++depth) {
+    for (int depth = 0;;) {
         ++rays.closest;
         pstd::optional<ShapeIntersection> hit = scene.Intersect(ray);
         if (!hit) {
@@ -236,21 +236,22 @@ void SPPM::TraceCameraPath(Point2i pPixel, int iteration, SampledWavelengths lam
         std::optional<BSDF> bsdf = scene.GetBSDF(si, lambda);
         if (!bsdf) {
             ray = RayDifferential(si.SpawnRay(ray.d));  // an interface: media are ignored
-            --depth;
             continue;
         }
         if (si.areaLightIndex >= 0)
             L += beta * WeightedEmission(scene.lights[si.areaLightIndex].L(si.p, si.n, si.uv, -ray.d, lambda),
                                          si.areaLightIndex, depth == 0 || specularBounce, prevCtx,
                                          ray.d, pdfBSDF);
-        if (depth == options.maxDepth)
+        // The path goes one bounce past its visible point: what BSDF sampling finds of the
+        // lights there is the other half of its direct light's MIS.
+        if (depth++ == options.maxDepth || haveVisiblePoint)
             break;
         L += beta * SampleLd(si, *bsdf, lambda, sampler, rays);
         // The first diffuse surface (or a glossy one at the last bounce) keeps the photons.
         BxDFFlags flags = bsdf->Flags();
-        if (IsDiffuse(flags) || (IsGlossy(flags) && depth + 1 == options.maxDepth)) {
+        if (IsDiffuse(flags) || (IsGlossy(flags) && depth == options.maxDepth)) {
             pixel.vp = {si.p, si.wo, *bsdf, beta, lambda.SecondaryTerminated()};
-            break;
+            haveVisiblePoint = true;
         }
         Float u = sampler.Get1D();
         pstd::optional<BSDFSample> bs = bsdf->Sample_f(si.wo, u, sampler.Get2D());

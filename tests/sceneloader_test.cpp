@@ -414,7 +414,8 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
          ":3:40: error: portal is not a planar rectangle (its corners in order)"},
         // Paths traced from the lights need the camera's importance.
         {"load_bdpt_camera.pbrt",
-         ":1:1: error: Integrator \"bdpt\" needs a perspective camera, not \"orthographic\""}};
+         ":1:1: error: Integrator \"bdpt\" needs a perspective camera, not \"orthographic\""},
+        {"load_sppm_radius.pbrt", ":1:19: error: sppm \"radius\" must be positive"}};
     for (auto [name, expected] : cases) {
         std::string file = std::string(PBRT_EXT_TEST_DATA_DIR) + "/bad/" + name;
         std::string error = LoadError(file);
