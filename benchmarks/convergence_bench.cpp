@@ -1,12 +1,14 @@
-// The noise-to-time study (issues 5 and 11): how fast each fabric sampler, path strategy, light
-// sampler and sample generator removes noise from the scenes of scenes/convergence/ (the paper's
-// Fig. 3 cylinder at three roughnesses under a sky and a small light, and at roughness 0.1 under
-// the sky alone; a Cornell box with fabric boxes; a scene after Veach's MIS figure).
+// The noise-to-time study (issues 5, 11 and 20): how fast each fabric sampler, path strategy,
+// light sampler, sample generator and integrator removes noise from the scenes of
+// scenes/convergence/ (the paper's Fig. 3 cylinder at three roughnesses under a sky and a small
+// light, and at roughness 0.1 under the sky alone; a Cornell box with fabric boxes; a scene after
+// Veach's MIS figure; a caustic on fabric).
 //
 // Each benchmark renders a scene once at n spp and compares it with the scene's reference image:
 //   Convergence/<scene>/<fabric sampler>/<strategy>/spp:<n>   every fabric sampler and strategy,
 //   LightSampler/<scene>/<bvh|power|uniform>/mis/spp:<n>      the light samplers (best, MIS),
 //   Sampler/<scene>/<sampler>/mis/spp:<n>                     the sample generators (best, MIS),
+//   Integrator/<scene>/<integrator>/mis/spp:<n>               path, bdpt, lightpath and sppm,
 // recording the counters
 //   seconds     the render's own time (scene loading excluded),
 //   relMSE      mean over pixels and channels of (x - r)^2 / (r^2 + 1e-2),
@@ -52,6 +54,9 @@ constexpr const char *kSamplerScenes[] = {"veach_mis", "cylinder_env_r0.1"};
 constexpr const char *kSamplers[] = {"independent", "stratified", "halton", "sobol",
                                      "paddedsobol", "zsobol", "pmj02bn"};
 constexpr const char *kStrategies[] = {"bsdf", "light", "mis"};
+// The integrators, on a caustic that only paths from the light can sample.
+constexpr const char *kIntegratorScenes[] = {"caustic_fabric"};
+constexpr const char *kIntegrators[] = {"path", "bdpt", "lightpath", "sppm"};
 constexpr int kSweepSpp[] = {4, 16, 64, 256};
 // Its own noise adds about 1/16 of the best sweep image's error at 256 spp; the plot script
 // subtracts that floor. Each reference takes about 30 s on 2 cores.
@@ -83,6 +88,10 @@ void WriteReference(const std::string &scene, const fs::path &cached) {
     overrides.seed = kReferenceSeed;
     overrides.strategy = PathStrategy::MIS;
     overrides.fabricSampler = FabricSampling::Best;
+    // An unbiased integrator that samples every path of the integrators' scenes.
+    for (const char *integratorScene : kIntegratorScenes)
+        if (scene == integratorScene)
+            overrides.integrator = "bdpt";
     std::unique_ptr<Scene> reference = LoadQuietly(scene, overrides);
     RenderStatistics stats = RenderQuietly(*reference);
     fs::create_directories(cached.parent_path());
@@ -93,10 +102,13 @@ void WriteReference(const std::string &scene, const fs::path &cached) {
     reference->film.GetImage().Write(cached.string(), metadata);
 }
 
+// The newest scene file of the scene's folder and of scenes/include, which some include.
 fs::file_time_type NewestSceneFile(const std::string &scene) {
     auto newest = fs::file_time_type::min();
-    for (const fs::directory_entry &entry : fs::directory_iterator(ScenePath(scene).parent_path()))
-        if (entry.path().extension() == ".pbrt") newest = std::max(newest, entry.last_write_time());
+    fs::path folder = ScenePath(scene).parent_path();
+    for (const fs::path &dir : {folder, folder.parent_path() / "include"})
+        for (const fs::directory_entry &entry : fs::directory_iterator(dir))
+            if (entry.path().extension() == ".pbrt") newest = std::max(newest, entry.last_write_time());
     return newest;
 }
 
@@ -185,6 +197,7 @@ bool RegisterConvergence() {
             }
     RegisterChoiceSweeps("LightSampler", kLightSamplerScenes, kLightSamplers, &RenderOverrides::lightSampler);
     RegisterChoiceSweeps("Sampler", kSamplerScenes, kSamplers, &RenderOverrides::sampler);
+    RegisterChoiceSweeps("Integrator", kIntegratorScenes, kIntegrators, &RenderOverrides::integrator);
     return true;
 }
 

@@ -504,7 +504,8 @@ SampledSpectrum BDPTIntegrator::ConnectBDPT(SampledWavelengths &lambda, BDPTVert
     if (t > 1 && s != 0 && cameraVertices[t - 1].type == VertexType::Light)
         return SampledSpectrum(0.f);
     SampledSpectrum L(0.f);
-    BDPTVertex sampled;
+    // The endpoint a connection samples (s = 1: on a light; t = 1: on the lens).
+    std::optional<BDPTVertex> sampled;
     if (s == 0) {
         // The camera subpath alone, ending on an emitter.
         const BDPTVertex &pt = cameraVertices[t - 1];
@@ -520,7 +521,7 @@ SampledSpectrum BDPTIntegrator::ConnectBDPT(SampledWavelengths &lambda, BDPTVert
             return SampledSpectrum(0.f);
         *pRaster = cs->pRaster;
         sampled = CameraVertex(cs->pLens, cs->nLens, qs.time, scene.cameraMedium, cs->Wi / cs->pdf);
-        L = qs.beta * qs.f(sampled, TransportMode::Importance) * sampled.beta;
+        L = qs.beta * qs.f(*sampled, TransportMode::Importance) * sampled->beta;
         if (qs.IsOnSurface())
             L *= AbsDot(cs->wi, Vector3f(qs.ns()));
         if (L)
@@ -550,8 +551,8 @@ SampledSpectrum BDPTIntegrator::ConnectBDPT(SampledWavelengths &lambda, BDPTVert
             return SampledSpectrum(0.f);
         sampled = LightVertex(chosen->lightIndex, light.Type(), ls->pLight, ls->nLight, ls->uvLight,
                               pt.time, pt.medium, ls->L / (ls->pdf * chosen->p), 0);
-        sampled.pdfFwd = sampled.PDFLightOrigin(*this, pt);
-        L = pt.beta * pt.f(sampled, TransportMode::Radiance) * sampled.beta;
+        sampled->pdfFwd = sampled->PDFLightOrigin(*this, pt);
+        L = pt.beta * pt.f(*sampled, TransportMode::Radiance) * sampled->beta;
         if (pt.IsOnSurface())
             L *= AbsDot(ls->wi, Vector3f(pt.ns()));
         if (L)
@@ -573,29 +574,25 @@ SampledSpectrum BDPTIntegrator::ConnectBDPT(SampledWavelengths &lambda, BDPTVert
             L *= g * Transmittance(scene, qs.SpawnRayTo(pt.p), pt.p, lambda, rays);
         }
     }
-    *misWeight = L ? MISWeight(lightVertices, cameraVertices, sampled, s, t) : 0;
+    *misWeight = L ? MISWeight(lightVertices, cameraVertices, sampled ? &*sampled : nullptr, s, t) : 0;
     return L * *misWeight;
 }
 
 Float BDPTIntegrator::MISWeight(BDPTVertex *lightVertices, BDPTVertex *cameraVertices,
-                                const BDPTVertex &sampled, int s, int t) const {
+                                BDPTVertex *sampled, int s, int t) const {
     if (s + t == 2)
         return 1;
     // Densities of 0 are specular bounces' or delta lights': their ratios count as 1, and the
     // strategies that would have to sample them are left out below.
     auto remap0 = [](Float f) -> Float { return f != 0 ? f : 1; };
-    BDPTVertex *qs = s > 0 ? &lightVertices[s - 1] : nullptr,
-               *pt = t > 0 ? &cameraVertices[t - 1] : nullptr,
-               *qsMinus = s > 1 ? &lightVertices[s - 2] : nullptr,
-               *ptMinus = t > 1 ? &cameraVertices[t - 2] : nullptr;
+    // The path as this strategy made it: with the endpoint it sampled in place of the subpath's.
+    auto light = [&](int i) -> BDPTVertex & { return s == 1 && i == 0 ? *sampled : lightVertices[i]; };
+    auto camera = [&](int i) -> BDPTVertex & { return t == 1 && i == 0 ? *sampled : cameraVertices[i]; };
+    BDPTVertex *qs = s > 0 ? &light(s - 1) : nullptr, *pt = t > 0 ? &camera(t - 1) : nullptr,
+               *qsMinus = s > 1 ? &light(s - 2) : nullptr, *ptMinus = t > 1 ? &camera(t - 2) : nullptr;
 
-    // The path as this strategy made it: the sampled endpoint, connection vertices that are
-    // not degenerate, and the reverse densities across the connection.
-    ScopedAssignment<BDPTVertex> a1;
-    if (s == 1)
-        a1 = {qs, sampled};
-    else if (t == 1)
-        a1 = {pt, sampled};
+    // Connection vertices that are not degenerate, and the reverse densities across the
+    // connection.
     ScopedAssignment<bool> a2, a3;
     if (pt)
         a2 = {&pt->delta, false};
@@ -617,17 +614,17 @@ Float BDPTIntegrator::MISWeight(BDPTVertex *lightVertices, BDPTVertex *cameraVer
     // The other strategies for the same path, as ratios of their densities to this one's.
     Float sumRi = 0, ri = 1;
     for (int i = t - 1; i > 0; --i) {
-        ri *= remap0(cameraVertices[i].pdfRev) / remap0(cameraVertices[i].pdfFwd);
+        ri *= remap0(camera(i).pdfRev) / remap0(camera(i).pdfFwd);
         if (i == 1)
             ri /= cropScale;  // the t = 1 strategy's contributions are scaled up by it
-        if (!cameraVertices[i].delta && !cameraVertices[i - 1].delta)
+        if (!camera(i).delta && !camera(i - 1).delta)
             sumRi += ri;
     }
     ri = 1;
     for (int i = s - 1; i >= 0; --i) {
-        ri *= remap0(lightVertices[i].pdfRev) / remap0(lightVertices[i].pdfFwd);
-        bool deltaLightVertex = i > 0 ? lightVertices[i - 1].delta : lightVertices[0].IsDeltaLight();
-        if (!lightVertices[i].delta && !deltaLightVertex)
+        ri *= remap0(light(i).pdfRev) / remap0(light(i).pdfFwd);
+        bool deltaLightVertex = i > 0 ? light(i - 1).delta : light(0).IsDeltaLight();
+        if (!light(i).delta && !deltaLightVertex)
             sumRi += ri;
     }
     if (t == 1)

@@ -40,12 +40,12 @@ class BDPTIntegrator {
     // film's file (bdpt_dDD_sSS_tTT.exr, as pbrt-v4), scaled for the light paths per pixel.
     void WriteStrategyImages(Float splatScale) const;
 
-    // The MIS weight of strategy (s, t) for the path made of the first s light and t camera
-    // vertices; exposed for the test that they sum to one over the strategies of a path.
-    Float MISWeight(BDPTVertex *lightVertices, BDPTVertex *cameraVertices, const BDPTVertex &sampled,
-                    int s, int t) const;
-
   private:
+    // The MIS weight of strategy (s, t) for the path made of the first s light and t camera
+    // vertices, where for s = 1 (t = 1) the light (camera) endpoint is the one the connection
+    // sampled, *sampled.
+    Float MISWeight(BDPTVertex *lightVertices, BDPTVertex *cameraVertices, BDPTVertex *sampled,
+                    int s, int t) const;
     friend struct BDPTVertex;  // its densities need the camera, lights and scene
 
     int GenerateCameraSubpath(const RayDifferential &ray, SampledWavelengths &lambda, Sampler &sampler,

@@ -362,20 +362,36 @@ std::optional<std::string> SamplerNameError(const std::string &name) {
            "stratified or independent";
 }
 
+std::optional<std::string> IntegratorNameError(const std::string &name) {
+    for (const char *known : {"path", "volpath", "bdpt", "lightpath", "sppm"})
+        if (name == known) return {};
+    return "unknown Integrator \"" + name + "\": expected path, volpath, bdpt, lightpath or sppm";
+}
+
 PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrides &overrides,
                                        std::string *lightSampler) {
     const ParameterDictionary &p = e.parameters;
-    bool supported = e.name.empty() || e.name == "path" || e.name == "volpath" ||
-                     e.name == "bdpt" || e.name == "lightpath" || e.name == "sppm";
+    // The command line's choice keeps only the scene's maxdepth: the other parameters are
+    // the scene's integrator's.
+    const bool overridden = overrides.integrator && *overrides.integrator != e.name;
+    const std::string name = overrides.integrator.value_or(e.name);
+    bool supported = name.empty() || !IntegratorNameError(name);
     // The others (mlt, ambientocclusion, ...): volpath comes closest.
     if (!supported)
         Substitute(e, "Integrator", "\"volpath\"");
     PathIntegratorOptions options;
-    options.type = e.name == "path"        ? IntegratorType::Path
-                   : e.name == "bdpt"      ? IntegratorType::BDPT
-                   : e.name == "lightpath" ? IntegratorType::LightPath
-                   : e.name == "sppm"      ? IntegratorType::SPPM
-                                           : IntegratorType::VolPath;
+    options.type = name == "path"        ? IntegratorType::Path
+                   : name == "bdpt"      ? IntegratorType::BDPT
+                   : name == "lightpath" ? IntegratorType::LightPath
+                   : name == "sppm"      ? IntegratorType::SPPM
+                                         : IntegratorType::VolPath;
+    if (overridden) {
+        options.maxDepth = p.GetOneInt("maxdepth", 5);
+        options.strategy = overrides.strategy.value_or(PathStrategy::MIS);
+        options.photonSeed = overrides.seed;
+        *lightSampler = overrides.lightSampler.value_or("bvh");
+        return options;
+    }
     if (options.type == IntegratorType::BDPT) {
         options.visualizeStrategies = p.GetOneBool("visualizestrategies", false);
         options.visualizeWeights = p.GetOneBool("visualizeweights", false);

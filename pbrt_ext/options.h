@@ -23,6 +23,9 @@ struct RenderOverrides {
     std::optional<FabricSampling> fabricSampler;  // for every fabric material
     std::optional<std::string> lightSampler;  // "bvh", "power" or "uniform", instead of the integrator's
     std::optional<std::string> sampler;      // a Sampler name (SamplerNameError), instead of the scene's
+    // An integrator name (IntegratorNameError) instead of the scene's, with the scene's
+    // "maxdepth" and none of its other parameters.
+    std::optional<std::string> integrator;
     double timeLimitSeconds = 0;             // 0: none
 };
 
@@ -31,5 +34,7 @@ FabricSampling ParseFabricSampling(const std::string &name);
 
 // Empty for a Sampler name pbrt_ext knows; otherwise the message naming the ones it does.
 std::optional<std::string> SamplerNameError(const std::string &name);
+// The same for an Integrator name pbrt_ext renders (path, volpath, bdpt, lightpath, sppm).
+std::optional<std::string> IntegratorNameError(const std::string &name);
 
 }  // namespace pbrt

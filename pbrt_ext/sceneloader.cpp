@@ -187,9 +187,9 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
     // perspective camera only.
     bool fromLights = integrator.type == IntegratorType::BDPT || integrator.type == IntegratorType::LightPath;
     if (fromLights && !camera.CastOrNullptr<PerspectiveCamera>())
-        throw ParseError(scene.integrator.loc, "Integrator \"" + scene.integrator.name +
-                                                   "\" needs a perspective camera, not \"" +
-                                                   camera.Name() + "\"");
+        throw ParseError(scene.integrator.loc,
+                         "Integrator \"" + overrides.integrator.value_or(scene.integrator.name) +
+                             "\" needs a perspective camera, not \"" + camera.Name() + "\"");
 
     SceneBuilder builder(std::move(camera), std::move(film), std::move(sampler));
     builder.SetIntegrator(integrator);

@@ -10,9 +10,9 @@ Writes into FOLDER (default: the JSON's folder)
   convergence_efficiency.png  efficiency ratios: each fabric sampler against uniform (under MIS),
                               MIS against BSDF-only and light-only (with the best sampler);
 and prints Markdown tables: the spp each fabric sampler needs for the relMSE of "best", MIS's
-efficiency relative to BSDF-only and light-only, and for the light samplers and the sample
-generators (LightSampler/ and Sampler/ benchmarks) relMSE per spp and efficiency relative to
-"bvh" and to "independent".
+efficiency relative to BSDF-only and light-only, and for the light samplers, the sample
+generators and the integrators (LightSampler/, Sampler/ and Integrator/ benchmarks) relMSE per
+spp and efficiency relative to "bvh", "independent" and "bdpt".
 
 The model: an unbiased estimator with independent samples has relMSE = c / spp, so the spp for
 equal error is proportional to c, and efficiency 1 / (relMSE * seconds) = 1 / (c * seconds per
@@ -171,11 +171,11 @@ def print_tables(fits):
             print(f"| {scene} | {s} | " + " | ".join(cell(r, ".3g") for r in ratios) + " |")
 
 
-CHOICE_BASELINES = {"LightSampler": "bvh", "Sampler": "independent"}
+CHOICE_BASELINES = {"LightSampler": "bvh", "Sampler": "independent", "Integrator": "bdpt"}
 
 
 def load_choices(path):
-    """{study: {scene: {choice: [(spp, seconds, relMSE)]}}} for the LightSampler/Sampler studies."""
+    """{study: {scene: {choice: [(spp, seconds, relMSE)]}}} for the studies of CHOICE_BASELINES."""
     with open(path) as f:
         benchmarks = json.load(f)["benchmarks"]
     studies = defaultdict(lambda: defaultdict(lambda: defaultdict(list)))

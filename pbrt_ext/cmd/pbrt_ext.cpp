@@ -65,6 +65,10 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
                    "zsobol, halton, sobol, paddedsobol, stratified or independent: the sample "
                    "generator, with its default randomization (default: the scene's Sampler)")
         ->check([](const std::string &name) { return SamplerNameError(name).value_or(""); });
+    app.add_option("--integrator", o.integrator,
+                   "path, volpath, bdpt, lightpath or sppm: the integrator, with the scene's "
+                   "maxdepth and the others' defaults (default: the scene's Integrator)")
+        ->check([](const std::string &name) { return IntegratorNameError(name).value_or(""); });
     app.add_option("--time-limit", o.timeLimitSeconds,
                    "stop after this many seconds with every pixel at the same sample count "
                    "(default: 0, no limit)");
