@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <vector>
 
 namespace pbrt {
 
@@ -31,7 +32,8 @@ RGBFilm::RGBFilm(Point2i fullResolution, Bounds2i pixelBounds, Filter filter, st
       filename(std::move(filename)), maxComponentValue(maxComponentValue),
       sensor(sensor ? *sensor : PixelSensor::Create("cie1931", 100, 0, 1, RGBColorSpace::sRGB())),
       colorSpace(colorSpace ? colorSpace : &RGBColorSpace::sRGB()),
-      outputRGBFromSensorRGB(this->colorSpace->RGBFromXYZ * this->sensor.XYZFromSensorRGB) {
+      outputRGBFromSensorRGB(this->colorSpace->RGBFromXYZ * this->sensor.XYZFromSensorRGB),
+      invFilterIntegral(1 / this->filter.Integral()) {
     if (fullResolution.x < 1 || fullResolution.y < 1)
         throw std::runtime_error("film: the resolution must be positive, not " + std::to_string(fullResolution.x) +
                                  "x" + std::to_string(fullResolution.y));
@@ -51,15 +53,30 @@ void RGBFilm::AddSplat(Point2f pFilm, const SampledSpectrum &L, const SampledWav
                          Point2i(int(std::floor(pDiscrete.x + radius.x)) + 1,
                                  int(std::floor(pDiscrete.y + radius.y)) + 1));
     splatBounds = Intersect(splatBounds, pixelBounds);
-    const Float invIntegral = 1 / filter.Integral();
-    for (Point2i p : splatBounds) {
-        Float wt = filter.Evaluate(Point2f(pFilm.x - p.x - 0.5f, pFilm.y - p.y - 0.5f)) * invIntegral;
-        if (wt == 0)
-            continue;
-        size_t index = PixelIndex(p);
-        for (int c = 0; c < 3; ++c)
-            splats[3 * index + c].Add(double(wt) * double(rgb[c]));
-    }
+    if (splatBounds.IsEmpty())
+        return;
+    // The filter is separable: its values along each axis, once (on the stack unless the filter
+    // is very wide).
+    constexpr int kStackWidth = 16;
+    Vector2i extent = splatBounds.Diagonal();
+    Float wxStack[kStackWidth], wyStack[kStackWidth];
+    std::vector<Float> wxHeap, wyHeap;
+    Float *wx = wxStack, *wy = wyStack;
+    if (extent.x > kStackWidth) wx = (wxHeap.resize(size_t(extent.x)), wxHeap.data());
+    if (extent.y > kStackWidth) wy = (wyHeap.resize(size_t(extent.y)), wyHeap.data());
+    for (int i = 0; i < extent.x; ++i)
+        wx[i] = filter.Evaluate1D(0, pFilm.x - (splatBounds.pMin.x + i) - 0.5f);
+    for (int j = 0; j < extent.y; ++j)
+        wy[j] = filter.Evaluate1D(1, pFilm.y - (splatBounds.pMin.y + j) - 0.5f) * invFilterIntegral;
+    for (int j = 0; j < extent.y; ++j)
+        for (int i = 0; i < extent.x; ++i) {
+            Float wt = wx[i] * wy[j];
+            if (wt == 0)
+                continue;
+            size_t index = PixelIndex(Point2i(splatBounds.pMin.x + i, splatBounds.pMin.y + j));
+            for (int c = 0; c < 3; ++c)
+                splats[3 * index + c].Add(double(wt) * double(rgb[c]));
+        }
 }
 
 Image RGBFilm::GetImage() const {

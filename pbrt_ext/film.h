@@ -123,7 +123,7 @@ class RGBFilm {
         double Load() const { return value.load(std::memory_order_relaxed); }
         std::atomic<double> value{0};
     };
-    // The sensor's RGB of L, scaled down to maxComponentValue keeping its hue.
+        // The sensor's RGB of L, scaled down to maxComponentValue keeping its hue.
     RGB ClampedSensorRGB(const SampledSpectrum &L, const SampledWavelengths &lambda) const {
         RGB rgb = sensor.ToSensorRGB(L, lambda);
         Float m = std::max({rgb.r, rgb.g, rgb.b});
@@ -145,6 +145,7 @@ class RGBFilm {
     const RGBColorSpace *colorSpace;
     SquareMatrix<3> outputRGBFromSensorRGB;
     std::vector<Pixel> pixels;
+    Float invFilterIntegral;        // splats are spread by the filter's normalized weights
     std::vector<AtomicSum> splats;  // 3 per pixel, or none
     double splatScale = 1;
 };

@@ -66,9 +66,8 @@ class BoxFilter {
 
     static constexpr const char *Name() { return "box"; }
     Vector2f Radius() const { return radius; }
-    Float Evaluate(Point2f p) const {
-        return (std::abs(p.x) <= radius.x && std::abs(p.y) <= radius.y) ? 1 : 0;
-    }
+    Float Evaluate(Point2f p) const { return Evaluate1D(0, p.x) * Evaluate1D(1, p.y); }
+    Float Evaluate1D(int axis, Float v) const { return std::abs(v) <= radius[axis] ? 1 : 0; }
     Float Integral() const { return 4 * radius.x * radius.y; }
     FilterSample Sample(Point2f u) const {
         return {Point2f(Lerp(u[0], -radius.x, radius.x), Lerp(u[1], -radius.y, radius.y)), 1};
@@ -88,9 +87,9 @@ class GaussianFilter {
 
     static constexpr const char *Name() { return "gaussian"; }
     Vector2f Radius() const { return radius; }
-    Float Evaluate(Point2f p) const {
-        return std::max<Float>(0, Gaussian(p.x, 0, sigma) - expX) *
-               std::max<Float>(0, Gaussian(p.y, 0, sigma) - expY);
+    Float Evaluate(Point2f p) const { return Evaluate1D(0, p.x) * Evaluate1D(1, p.y); }
+    Float Evaluate1D(int axis, Float v) const {
+        return std::max<Float>(0, Gaussian(v, 0, sigma) - (axis == 0 ? expX : expY));
     }
     Float Integral() const {
         return (GaussianIntegral(-radius.x, radius.x, 0, sigma) - 2 * radius.x * expX) *
@@ -114,9 +113,8 @@ class MitchellFilter {
 
     static constexpr const char *Name() { return "mitchell"; }
     Vector2f Radius() const { return radius; }
-    Float Evaluate(Point2f p) const {
-        return Mitchell1D(2 * p.x / radius.x) * Mitchell1D(2 * p.y / radius.y);
-    }
+    Float Evaluate(Point2f p) const { return Evaluate1D(0, p.x) * Evaluate1D(1, p.y); }
+    Float Evaluate1D(int axis, Float v) const { return Mitchell1D(2 * v / radius[axis]); }
     // The 1D cubic integrates to 1 over [-2, 2] for any b, c.
     Float Integral() const { return radius.x * radius.y / 4; }
     FilterSample Sample(Point2f u) const { return sampler.Sample(u); }
@@ -146,9 +144,8 @@ class TriangleFilter {
 
     static constexpr const char *Name() { return "triangle"; }
     Vector2f Radius() const { return radius; }
-    Float Evaluate(Point2f p) const {
-        return std::max<Float>(0, radius.x - std::abs(p.x)) * std::max<Float>(0, radius.y - std::abs(p.y));
-    }
+    Float Evaluate(Point2f p) const { return Evaluate1D(0, p.x) * Evaluate1D(1, p.y); }
+    Float Evaluate1D(int axis, Float v) const { return std::max<Float>(0, radius[axis] - std::abs(v)); }
     Float Integral() const { return Sqr(radius.x) * Sqr(radius.y); }
     // Each axis is a tent: the sample picks a half by u, then a linear ramp within it.
     FilterSample Sample(Point2f u) const {
@@ -192,6 +189,10 @@ class Filter {
     }
     Float Evaluate(Point2f p) const {
         return std::visit([&](const auto &f) { return f.Evaluate(p); }, filter);
+    }
+    // Every filter is separable: Evaluate(p) is Evaluate1D(0, p.x) * Evaluate1D(1, p.y).
+    Float Evaluate1D(int axis, Float v) const {
+        return std::visit([&](const auto &f) { return f.Evaluate1D(axis, v); }, filter);
     }
     Float Integral() const {
         return std::visit([](const auto &f) { return f.Integral(); }, filter);

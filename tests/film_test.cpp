@@ -169,20 +169,26 @@ TEST(Film, ConcurrentSplatsToOnePixelLoseNothing) {
 // A splat spreads over the pixels the filter covers by the filter's normalized weights: its
 // total over the film is what a camera sample of the same radiance adds to its pixel.
 TEST(Film, SplatSpreadsByTheNormalizedFilter) {
-    Point2i res(16, 16);
+    // The wide Gaussian spans more pixels than AddSplat keeps its weights for on the stack.
+    Point2i res(48, 48);
     Bounds2i all(Point2i(0, 0), res);
-    for (Filter filter : {Filter(BoxFilter()), Filter(GaussianFilter()), Filter(MitchellFilter())}) {
+    for (Filter filter : {Filter(BoxFilter()), Filter(GaussianFilter()), Filter(MitchellFilter()),
+                          Filter(TriangleFilter()), Filter(GaussianFilter(Vector2f(12, 10), 4))}) {
         RGBFilm splatted(res, all, filter, "unused.exr"), sampled(res, all, filter, "unused.exr");
         splatted.EnableSplats();
         const SampledSpectrum L(0.5f, 1.f, 2.f, 0.25f);
-        splatted.AddSplat(Point2f(7.3f, 8.9f), L, kLambda);
-        sampled.AddSample(Point2i(7, 8), L, kLambda, 1);
+        splatted.AddSplat(Point2f(23.3f, 24.9f), L, kLambda);
+        sampled.AddSample(Point2i(23, 24), L, kLambda, 1);
         double total = 0;
-        for (Point2i p : all)
+        int touched = 0;
+        for (Point2i p : all) {
             total += splatted.GetPixelRGB(p).Average();
-        EXPECT_NEAR(total, sampled.GetPixelRGB(Point2i(7, 8)).Average(),
-                    0.02 * sampled.GetPixelRGB(Point2i(7, 8)).Average())
+            touched += splatted.GetPixelRGB(p).Average() != 0;
+        }
+        EXPECT_NEAR(total, sampled.GetPixelRGB(Point2i(23, 24)).Average(),
+                    0.02 * sampled.GetPixelRGB(Point2i(23, 24)).Average())
             << filter.ToString();
+        EXPECT_LE(touched, (2 * filter.Radius().x + 1) * (2 * filter.Radius().y + 1)) << filter.ToString();
     }
 }
 
