@@ -1,7 +1,8 @@
 // Renderer throughput: camera samples per second and rays per second of the path tracer for 1 ... all
 // threads, on the Cornell box of tests/scenes.h (256 x 256, 64 spp, maxdepth 5, as the issue
 // specifies) with diffuse and with fabric boxes, and on the fabric scenes of scenes/ loaded through
-// LoadScene, at a sample count that keeps one single-threaded render near 5 s. Scene creation (and
+// LoadScene, at a sample count that keeps one single-threaded render near 5 s; and of bdpt and
+// lightpath on the diffuse box and bdpt on scenes/caustic-fabric.pbrt, at 16 spp. Scene creation (and
 // file loading) is not timed. With PBRT_EXT_BENCH_IMAGES set to a folder, each benchmark also writes
 // the image it rendered there as PNG.
 #include "scenes.h"
@@ -59,9 +60,12 @@ void ThreadCounts(benchmark::internal::Benchmark *b) {
     b->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
 }
 
-void RenderCornellBox(benchmark::State &state, Material boxes, const char *imageName) {
+void RenderCornellBox(benchmark::State &state, Material boxes, const char *imageName,
+                      IntegratorType integrator = IntegratorType::Path, int spp = 64) {
     Measure(state, [&](int) {
-        return testscenes::CornellBox(Point2i(256, 256), 64, {5, false, PathStrategy::MIS}, boxes);
+        PathIntegratorOptions options;
+        options.type = integrator;
+        return testscenes::CornellBox(Point2i(256, 256), spp, options, boxes);
     }, imageName);
 }
 
@@ -85,7 +89,17 @@ void CornellFabric(benchmark::State &state) {
     fabric.roughness = 0.3f;
     RenderCornellBox(state, fabric, "cornell_fabric");
 }
+// The paths-from-the-lights integrators on the diffuse box, at 16 spp: a light subpath and
+// every connection per camera sample.
+void CornellBDPT(benchmark::State &state) {
+    RenderCornellBox(state, DiffuseMaterial{Spectrum(0.73f)}, "cornell_bdpt", IntegratorType::BDPT, 16);
+}
+void CornellLightPath(benchmark::State &state) {
+    RenderCornellBox(state, DiffuseMaterial{Spectrum(0.73f)}, "cornell_lightpath",
+                     IntegratorType::LightPath, 16);
+}
 void FabricCylinder(benchmark::State &state) { RenderSceneFile(state, "fabric-cylinder", 32); }
+void CausticFabric(benchmark::State &state) { RenderSceneFile(state, "caustic-fabric", 16); }
 void FabricShowcase(benchmark::State &state) { RenderSceneFile(state, "fabric-showcase", 32); }
 
 }  // namespace
@@ -94,3 +108,6 @@ BENCHMARK(CornellDiffuse)->Apply(ThreadCounts);
 BENCHMARK(CornellFabric)->Apply(ThreadCounts);
 BENCHMARK(FabricCylinder)->Apply(ThreadCounts);
 BENCHMARK(FabricShowcase)->Apply(ThreadCounts);
+BENCHMARK(CornellBDPT)->Apply(ThreadCounts);
+BENCHMARK(CornellLightPath)->Apply(ThreadCounts);
+BENCHMARK(CausticFabric)->Apply(ThreadCounts);
