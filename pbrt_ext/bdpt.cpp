@@ -19,21 +19,21 @@ enum class VertexType { Camera, Light, Surface, Medium };
 struct BDPTVertex {
     VertexType type = VertexType::Camera;
     SampledSpectrum beta{0.f};
-    Point3f p;
-    Normal3f n;  // geometric normal; zero off surfaces
+    Point3f p{};
+    Normal3f n{};  // geometric normal; zero off surfaces
     Float time = 0;
     int medium = -1;  // the medium a camera, light or medium vertex is in
     // Surface vertices.
-    SurfaceInteraction si;
-    std::optional<BSDF> bsdf;
+    SurfaceInteraction si{};
+    std::optional<BSDF> bsdf{};
     // Medium vertices.
-    Vector3f wo;
-    HGPhaseFunction phase;
+    Vector3f wo{};
+    HGPhaseFunction phase{};
     // Light vertices: the light (-1: the infinite lights an escaped camera ray sees), its type,
     // and the surface parameters of a point on an area light.
     int lightIndex = -1;
     LightType lightType = LightType::Infinite;
-    Point2f uv;
+    Point2f uv{};
     bool delta = false;  // scattered by a specular lobe
     Float pdfFwd = 0, pdfRev = 0;
 
@@ -107,30 +107,13 @@ struct BDPTVertex {
 namespace {
 
 BDPTVertex CameraVertex(Point3f p, Normal3f n, Float time, int medium, SampledSpectrum beta) {
-    BDPTVertex v;
-    v.type = VertexType::Camera;
-    v.p = p;
-    v.n = n;
-    v.time = time;
-    v.medium = medium;
-    v.beta = beta;
-    return v;
+    return {.type = VertexType::Camera, .beta = beta, .p = p, .n = n, .time = time, .medium = medium};
 }
 
 BDPTVertex LightVertex(int lightIndex, LightType lightType, Point3f p, Normal3f n, Point2f uv,
                        Float time, int medium, SampledSpectrum beta, Float pdfFwd) {
-    BDPTVertex v;
-    v.type = VertexType::Light;
-    v.lightIndex = lightIndex;
-    v.lightType = lightType;
-    v.p = p;
-    v.n = n;
-    v.uv = uv;
-    v.time = time;
-    v.medium = medium;
-    v.beta = beta;
-    v.pdfFwd = pdfFwd;
-    return v;
+    return {.type = VertexType::Light, .beta = beta, .p = p, .n = n, .time = time, .medium = medium,
+            .lightIndex = lightIndex, .lightType = lightType, .uv = uv, .pdfFwd = pdfFwd};
 }
 
 // The infinite lights as seen by a camera ray that escaped (pbrt-v4 places the vertex a unit

@@ -76,6 +76,20 @@ struct MediumInteraction {
     Ray SpawnRayTo(Point3f p2) const { return Ray(p, p2 - p, medium, time); }
 };
 
+// Ratio tracking's factors at a tentative collision drawn with the hero wavelength's majorant
+// (T_maj sigma_maj is its density): the null-collision fraction T_maj sigma_n / p that the
+// transmittance estimate takes on, and T_maj sigma_maj / p, the other wavelengths' density
+// relative to the hero's, for spectral MIS.
+struct RatioTrackingStep {
+    SampledSpectrum nullRatio, majorantRatio;
+};
+inline RatioTrackingStep RatioTracking(const MediumProperties &mp, SampledSpectrum sigma_maj,
+                                       SampledSpectrum T_maj) {
+    SampledSpectrum sigma_n = ClampZero(sigma_maj - mp.sigma_a - mp.sigma_s);
+    Float pdf = T_maj[0] * sigma_maj[0];
+    return {T_maj * sigma_n / pdf, T_maj * sigma_maj / pdf};
+}
+
 // A stretch [tMin, tMax] of a ray (unit direction) over which sigma_t <= sigma_maj.
 struct RayMajorantSegment {
     Float tMin, tMax;

@@ -1,6 +1,7 @@
 #include "pbrt_ext/volpath.h"
 
 #include "pbrt_ext/scene.h"
+#include "pbrt_ext/transmittance.h"
 #include "pbrt_ext/util/hash.h"
 #include "pbrt_ext/util/rng.h"
 #include "pbrt_ext/util/sampling.h"
@@ -224,43 +225,31 @@ SampledSpectrum VolPathIntegrator::Transmittance(Ray ray, Point3f pLight,
                                                  RayCounts &rays) const {
     SampledSpectrum T_ray(1.f);
     RNG rng(Hash(ray.o), Hash(ray.d));
-    while (true) {
-        ++rays.shadow;
-        pstd::optional<ShapeIntersection> hit = scene.Intersect(ray, 1 - ShadowEpsilon());
-        if (hit && hit->intr.materialIndex >= 0)
-            return SampledSpectrum(0.f);  // an opaque surface
-        if (ray.medium >= 0) {
-            Float tMax = hit ? hit->tHit : 1 - ShadowEpsilon();
-            SampledSpectrum T_majEnd = scene.media[ray.medium].SampleT_maj(
-                ray, tMax, rng.Uniform<Float>(), rng, lambda,
-                [&](Point3f, const MediumProperties &mp, SampledSpectrum sigma_maj,
-                    SampledSpectrum T_maj) {
-                    // Ratio tracking: every collision multiplies by the null fraction.
-                    SampledSpectrum sigma_n = ClampZero(sigma_maj - mp.sigma_a - mp.sigma_s);
-                    Float pdf = T_maj[0] * sigma_maj[0];
-                    T_ray *= T_maj * sigma_n / pdf;
-                    *r_l *= T_maj * sigma_maj / pdf;
-                    *r_u *= T_maj * sigma_n / pdf;
-                    // Russian roulette once the estimate is small (pbrt-v4's 0.05 and 0.75).
-                    SampledSpectrum Tr = T_ray / MISDenominator(*r_l + *r_u);
-                    if (Tr.MaxComponentValue() < 0.05f) {
-                        if (rng.Uniform<Float>() < 0.75f)
-                            T_ray = SampledSpectrum(0.f);
-                        else
-                            T_ray /= 0.25f;
-                    }
-                    return bool(T_ray);
-                });
-            T_ray *= T_majEnd / T_majEnd[0];
-            *r_l *= T_majEnd / T_majEnd[0];
-            *r_u *= T_majEnd / T_majEnd[0];
-        }
-        if (!T_ray)
-            return SampledSpectrum(0.f);
-        if (!hit)
-            return T_ray;
-        ray = hit->intr.SpawnRayTo(pLight);
-    }
+    bool reached = WalkToTarget(scene, ray, pLight, rays, [&](const Ray &r, Float tMax) {
+        SampledSpectrum T_majEnd = scene.media[r.medium].SampleT_maj(
+            r, tMax, rng.Uniform<Float>(), rng, lambda,
+            [&](Point3f, const MediumProperties &mp, SampledSpectrum sigma_maj, SampledSpectrum T_maj) {
+                // Ratio tracking: every collision multiplies by the null fraction.
+                RatioTrackingStep step = RatioTracking(mp, sigma_maj, T_maj);
+                T_ray *= step.nullRatio;
+                *r_l *= step.majorantRatio;
+                *r_u *= step.nullRatio;
+                // Russian roulette once the estimate is small (pbrt-v4's 0.05 and 0.75).
+                SampledSpectrum Tr = T_ray / MISDenominator(*r_l + *r_u);
+                if (Tr.MaxComponentValue() < 0.05f) {
+                    if (rng.Uniform<Float>() < 0.75f)
+                        T_ray = SampledSpectrum(0.f);
+                    else
+                        T_ray /= 0.25f;
+                }
+                return bool(T_ray);
+            });
+        T_ray *= T_majEnd / T_majEnd[0];
+        *r_l *= T_majEnd / T_majEnd[0];
+        *r_u *= T_majEnd / T_majEnd[0];
+        return bool(T_ray);
+    });
+    return reached ? T_ray : SampledSpectrum(0.f);
 }
 
 }  // namespace pbrt
