@@ -519,16 +519,13 @@ SampledSpectrum BDPTIntegrator::ConnectBDPT(SampledWavelengths &lambda, BDPTVert
         if (!chosen)
             return SampledSpectrum(0.f);
         const Light &light = scene.lights[chosen->lightIndex];
-        LightSampleContext ctx(pt.p, Normal3f(0, 0, 0), Normal3f(0, 0, 0));
-        if (pt.type == VertexType::Surface) {
-            // Sample from just off the surface on the side the BSDF scatters to.
-            ctx = LightSampleContext(pt.si);
-            BxDFFlags flags = pt.bsdf->Flags();
-            if (IsReflective(flags) && !IsTransmissive(flags))
-                ctx.p = OffsetRayOrigin(pt.si.p, pt.si.n, pt.si.wo, pt.si.errorBound);
-            else if (IsTransmissive(flags) && !IsReflective(flags))
-                ctx.p = OffsetRayOrigin(pt.si.p, pt.si.n, -pt.si.wo, pt.si.errorBound);
-        }
+        // From the surface point itself, as the path tracer samples lights. (pbrt-v4 moves it off
+        // the surface to the side the BSDF scatters to; on a surface that emits too, that point
+        // then sees its own emitter as a hemisphere of light: 2 % too much of the light two
+        // bounces deep in BDPTStrategies' scene, where the lamp's shade reflects.)
+        LightSampleContext ctx = pt.type == VertexType::Surface
+                                     ? LightSampleContext(pt.si)
+                                     : LightSampleContext(pt.p, Normal3f(0, 0, 0), Normal3f(0, 0, 0));
         pstd::optional<LightLiSample> ls = light.SampleLi(ctx, u, lambda);
         if (!ls || !ls->L || !(ls->pdf > 0))
             return SampledSpectrum(0.f);

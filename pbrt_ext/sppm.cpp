@@ -181,12 +181,9 @@ SampledSpectrum SPPM::WeightedEmission(SampledSpectrum Le, int lightIndex, bool 
 SampledSpectrum SPPM::SampleLd(const SurfaceInteraction &si, const BSDF &bsdf,
                                const SampledWavelengths &lambda, Sampler &sampler,
                                RayCounts &rays) const {
+    // From the surface point itself, as the path tracer and bdpt sample lights (bdpt.cpp says
+    // why not from pbrt-v4's point moved off the surface).
     LightSampleContext ctx(si);
-    BxDFFlags flags = bsdf.Flags();
-    if (IsReflective(flags) && !IsTransmissive(flags))
-        ctx.p = OffsetRayOrigin(si.p, si.n, si.wo, si.errorBound);
-    else if (IsTransmissive(flags) && !IsReflective(flags))
-        ctx.p = OffsetRayOrigin(si.p, si.n, -si.wo, si.errorBound);
     Float u = sampler.Get1D();
     Point2f uLight = sampler.Get2D();
     pstd::optional<SampledLight> sampled = scene.lightSampler.Sample(ctx, u);
