@@ -385,10 +385,10 @@ PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrid
                    : name == "lightpath" ? IntegratorType::LightPath
                    : name == "sppm"      ? IntegratorType::SPPM
                                          : IntegratorType::VolPath;
+    options.maxDepth = p.GetOneInt("maxdepth", 5);
+    options.strategy = overrides.strategy.value_or(PathStrategy::MIS);
+    options.photonSeed = overrides.seed;
     if (overridden) {
-        options.maxDepth = p.GetOneInt("maxdepth", 5);
-        options.strategy = overrides.strategy.value_or(PathStrategy::MIS);
-        options.photonSeed = overrides.seed;
         *lightSampler = overrides.lightSampler.value_or("bvh");
         return options;
     }
@@ -403,9 +403,7 @@ PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrid
             throw ParseError(*p.Loc("radius"), "sppm \"radius\" must be positive");
         options.photonSeed = p.GetOneInt("seed", overrides.seed);
     }
-    options.maxDepth = p.GetOneInt("maxdepth", 5);
     options.regularize = p.GetOneBool("regularize", false);
-    options.strategy = overrides.strategy.value_or(PathStrategy::MIS);
     std::string sampler = p.GetOneString("lightsampler", "bvh");
     if (std::optional<std::string> error = LightSamplerNameError(sampler))
         throw ParseError(*p.Loc("lightsampler"), *error);

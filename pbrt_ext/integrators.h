@@ -71,6 +71,12 @@ class PathIntegrator {
     // ray: a camera ray with its differentials (a plain ray converts to one without).
     SampledSpectrum Li(RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler,
                        RayCounts &rays) const;
+    // Direct lighting at an intersection by sampling one light: its contribution weighted for MIS
+    // against BSDF sampling (or with weight 1 for strategy Light). Also sppm's at its camera
+    // paths' vertices.
+    SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf,
+                             const SampledWavelengths &lambda, Sampler &sampler,
+                             RayCounts &rays) const;
 
   private:
     // The BSDF density of the direction a path was sampled in, for the MIS weight of an emitter
@@ -100,11 +106,6 @@ class PathIntegrator {
         Vector3f pendingWo, pendingWi;
     };
 
-    // Direct lighting at an intersection by sampling one light: its contribution weighted for MIS
-    // against BSDF sampling (or with weight 1 for strategy Light).
-    SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf,
-                             const SampledWavelengths &lambda, Sampler &sampler,
-                             RayCounts &rays) const;
     // Weight of an emitter reached by BSDF sampling with density pdfBSDF, that light sampling
     // from prevCtx would have chosen with density pdfLight.
     Float BSDFHitWeight(bool lightSamplingApplied, BSDFDensity &pdfBSDF, Float pdfLight) const;

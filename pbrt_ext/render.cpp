@@ -57,21 +57,6 @@ bool Cancelled(const RenderOptions &options) {
     return options.cancel && options.cancel->load(std::memory_order_relaxed);
 }
 
-// The camera ray, with its differentials only where some material uses them (bump maps):
-// a scene without that pays nothing for them.
-pstd::optional<CameraRayDifferential> CameraRayFor(const Scene &scene, const CameraSample &cs) {
-    if (!scene.usesRayDifferentials) {
-        pstd::optional<CameraRay> cr = scene.camera.GenerateRay(cs);
-        if (!cr)
-            return {};
-        return CameraRayDifferential{RayDifferential(cr->ray), cr->weight};
-    }
-    pstd::optional<CameraRayDifferential> cr = scene.camera.GenerateRayDifferential(cs);
-    if (cr)
-        cr->ray.ScaleDifferentials(RayDifferentialScale(scene.sampler.SamplesPerPixel()));
-    return cr;
-}
-
 // Twice the last wave, up to kMaxWaveSize. Under a time limit, also no more samples than the
 // remaining time is predicted to fit at the speed so far (at least one), so that a doubled wave
 // does not overrun the limit.
@@ -99,10 +84,10 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
             // pbrt-v4's order: the wavelengths take the first dimension, then the camera sample.
             SampledWavelengths lambda = scene.film.SampleWavelengths(sampler.Get1D());
             CameraSample cs = GetCameraSample(sampler, p, scene.film.GetFilter(), scene.hasMotion);
-            pstd::optional<CameraRayDifferential> cr = CameraRayFor(scene, cs);
+            pstd::optional<CameraRayDifferential> cr =
+                scene.GenerateCameraRay(cs, RayDifferentialScale(scene.sampler.SamplesPerPixel()));
             SampledSpectrum L(0.f);
             if (cr) {
-                cr->ray.medium = scene.cameraMedium;
                 if constexpr (requires { integrator.Li(cr->ray, cs.pFilm, lambda, sampler, counts.rays); })
                     L = cr->weight * integrator.Li(cr->ray, cs.pFilm, lambda, sampler, counts.rays);
                 else
@@ -162,12 +147,12 @@ std::string RenderStatistics::ToString() const {
 }
 
 RenderStatistics Render(Scene &scene, const RenderOptions &options) {
-    if (scene.integratorOptions.type == IntegratorType::SPPM)
-        return RenderSPPM(scene, options);  // iterations of camera paths and photons
     std::unique_ptr<tbb::global_control> threads;
     if (options.nThreads > 0)
         threads = std::make_unique<tbb::global_control>(
             tbb::global_control::max_allowed_parallelism, options.nThreads);
+    if (scene.integratorOptions.type == IntegratorType::SPPM)
+        return RenderSPPM(scene, options);  // iterations of camera paths and photons
     const Integrator integrator = MakeIntegrator(scene, options);
     const Bounds2i pixels = scene.film.PixelBounds();
     const std::vector<Bounds2i> tiles = Tiles(pixels);
@@ -214,7 +199,7 @@ RenderStatistics Render(Scene &scene, const RenderOptions &options) {
         if (const BDPTIntegrator *bdpt = std::get_if<BDPTIntegrator>(&integrator))
             bdpt->WriteStrategyImages(splatScale);
     }
-        for (const ThreadCounts &c : counts) {
+    for (const ThreadCounts &c : counts) {
         stats.closestRays += c.rays.closest;
         stats.shadowRays += c.rays.shadow;
         stats.discardedSamples += c.discarded;

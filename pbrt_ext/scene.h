@@ -63,6 +63,22 @@ class Scene {
                                                sampler.SamplesPerPixel(), &dpdx, &dpdy);
         si.SetDifferentials(dpdx, dpdy);
     }
+    // The camera ray of a sample, starting in the camera's medium, with its differentials
+    // (scaled by differentialScale) only where some material reads the footprint: a scene
+    // without that pays nothing for them.
+    pstd::optional<CameraRayDifferential> GenerateCameraRay(const CameraSample &cs,
+                                                            Float differentialScale) const {
+        pstd::optional<CameraRayDifferential> cr;
+        if (!usesRayDifferentials) {
+            if (pstd::optional<CameraRay> r = camera.GenerateRay(cs))
+                cr = CameraRayDifferential{RayDifferential(r->ray), r->weight};
+        } else if ((cr = camera.GenerateRayDifferential(cs))) {
+            cr->ray.ScaleDifferentials(differentialScale);
+        }
+        if (cr)
+            cr->ray.medium = cameraMedium;
+        return cr;
+    }
     // The BSDF at a hit, mixes resolved; none for an interface (a surface that only bounds media).
     std::optional<BSDF> GetBSDF(const SurfaceInteraction &si, SampledWavelengths &lambda) const {
         int index = si.materialIndex;

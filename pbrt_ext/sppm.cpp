@@ -8,7 +8,6 @@
 #include "pbrt_ext/util/sampling.h"
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -123,6 +122,7 @@ class SPPM {
   public:
     SPPM(Scene &scene, const RenderOptions &renderOptions)
         : scene(scene), options(scene.integratorOptions), renderOptions(renderOptions),
+          directLight(scene, PathIntegratorOptions{}),
           pixelBounds(scene.film.PixelBounds()), pixels(size_t(pixelBounds.Area())),
           shootLightSampler(scene.lights), permutations(uint32_t(options.photonSeed)) {
         photonsPerIteration = options.photonsPerIteration > 0 ? options.photonsPerIteration
@@ -141,10 +141,6 @@ class SPPM {
     void TracePhoton(uint64_t haltonIndex, SampledWavelengths lambda, const VisiblePointGrid &grid,
                      RayCounts &rays);
     void UpdatePixels();
-    // Direct light at a camera path's vertex by one light sample, weighted against BSDF
-    // sampling by the power heuristic (pbrt-v4's SPPMIntegrator::SampleLd).
-    SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf,
-                             const SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays) const;
     // Emission Le reached by a camera path after a bounce with BSDF density pdfBSDF from prevCtx,
     // weighted against light sampling.
     SampledSpectrum WeightedEmission(SampledSpectrum Le, int lightIndex, bool countFully,
@@ -160,6 +156,9 @@ class SPPM {
     Scene &scene;
     const PathIntegratorOptions &options;
     const RenderOptions &renderOptions;
+    // Direct light at the camera paths' vertices: the path tracer's, by MIS (pbrt-v4's
+    // SPPMIntegrator::SampleLd is the same estimator).
+    PathIntegrator directLight;
     Bounds2i pixelBounds;
     std::vector<SPPMPixel> pixels;
     PowerLightSampler shootLightSampler;
@@ -178,41 +177,15 @@ SampledSpectrum SPPM::WeightedEmission(SampledSpectrum Le, int lightIndex, bool 
     return PowerHeuristic(1, pdfBSDF, 1, pdfLight) * Le;
 }
 
-SampledSpectrum SPPM::SampleLd(const SurfaceInteraction &si, const BSDF &bsdf,
-                               const SampledWavelengths &lambda, Sampler &sampler,
-                               RayCounts &rays) const {
-    // From the surface point itself, as the path tracer and bdpt sample lights (bdpt.cpp says
-    // why not from pbrt-v4's point moved off the surface).
-    LightSampleContext ctx(si);
-    Float u = sampler.Get1D();
-    Point2f uLight = sampler.Get2D();
-    pstd::optional<SampledLight> sampled = scene.lightSampler.Sample(ctx, u);
-    if (!sampled)
-        return SampledSpectrum(0.f);
-    const Light &light = scene.lights[sampled->lightIndex];
-    pstd::optional<LightLiSample> ls = light.SampleLi(ctx, uLight, lambda, true);
-    if (!ls || !ls->L || !(ls->pdf > 0))
-        return SampledSpectrum(0.f);
-    SampledSpectrum f = bsdf.f(si.wo, ls->wi) * AbsDot(ls->wi, Vector3f(si.shading.n));
-    if (!f)
-        return SampledSpectrum(0.f);
-    ++rays.shadow;
-    if (scene.IntersectP(si.SpawnRayTo(ls->pLight), 1 - ShadowEpsilon()))
-        return SampledSpectrum(0.f);
-    Float pdfLight = sampled->p * ls->pdf;
-    Float weight = IsDeltaLight(light.Type()) ? 1 : PowerHeuristic(1, pdfLight, 1, bsdf.PDF(si.wo, ls->wi));
-    return weight * f * ls->L / pdfLight;
-}
-
 void SPPM::TraceCameraPath(Point2i pPixel, int iteration, SampledWavelengths lambda,
                            Sampler &sampler, RayCounts &rays) {
     sampler.StartPixelSample(pPixel, iteration);
     CameraSample cs = GetCameraSample(sampler, pPixel, scene.film.GetFilter());
-    pstd::optional<CameraRayDifferential> cr = scene.camera.GenerateRayDifferential(cs);
+    // pbrt-v4 scales SPPM's differentials by 1/sqrt(iterations), without the 1/8 floor.
+    pstd::optional<CameraRayDifferential> cr =
+        scene.GenerateCameraRay(cs, 1 / std::sqrt(Float(scene.sampler.SamplesPerPixel())));
     if (!cr || !cr->weight)
         return;
-    cr->ray.ScaleDifferentials(1 / std::sqrt(Float(scene.sampler.SamplesPerPixel())));
-    cr->ray.medium = scene.cameraMedium;
     RayDifferential ray = cr->ray;
     SampledSpectrum beta = cr->weight, L(0.f);
     SPPMPixel &pixel = PixelAt(pPixel);
@@ -243,7 +216,7 @@ void SPPM::TraceCameraPath(Point2i pPixel, int iteration, SampledWavelengths lam
         // lights there is the other half of its direct light's MIS.
         if (depth++ == options.maxDepth || haveVisiblePoint)
             break;
-        L += beta * SampleLd(si, *bsdf, lambda, sampler, rays);
+        L += beta * directLight.SampleLd(si, *bsdf, lambda, sampler, rays);
         // The first diffuse surface (or a glossy one at the last bounce) keeps the photons.
         BxDFFlags flags = bsdf->Flags();
         if (IsDiffuse(flags) || (IsGlossy(flags) && depth == options.maxDepth)) {
@@ -422,10 +395,6 @@ RenderStatistics SPPM::Render() {
 }  // namespace
 
 RenderStatistics RenderSPPM(Scene &scene, const RenderOptions &options) {
-    std::unique_ptr<tbb::global_control> threads;
-    if (options.nThreads > 0)
-        threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                        options.nThreads);
     return SPPM(scene, options).Render();
 }
 

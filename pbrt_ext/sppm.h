@@ -15,7 +15,8 @@ namespace pbrt {
 
 class Scene;
 
-// Renders the scene by SPPM into its film (one value per pixel, in the sensor's RGB).
+// Renders the scene by SPPM into its film (one value per pixel, in the sensor's RGB). Render
+// calls it, under the thread limit of options.
 RenderStatistics RenderSPPM(Scene &scene, const RenderOptions &options);
 
 }  // namespace pbrt
