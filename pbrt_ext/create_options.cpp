@@ -195,6 +195,7 @@ RGBFilm CreateFilm(const SceneEntity &e, Float exposureTime, Filter filter,
     else if (!e.name.empty() && e.name != "rgb")
         throw ParseError(e.loc, "unknown Film \"" + e.name + "\": expected rgb");
     Point2i resolution(p.GetOneInt("xresolution", 1280), p.GetOneInt("yresolution", 720));
+    if (overrides.resolution) resolution = *overrides.resolution;
     CheckResolution(e, resolution);
     std::string filename = p.GetOneString("filename", "pbrt.exr");
     if (!overrides.outFile.empty())

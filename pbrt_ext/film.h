@@ -54,6 +54,9 @@ class RGBFilm {
     const std::string &GetFilename() const { return filename; }
     const RGBColorSpace &ColorSpace() const { return *colorSpace; }
     const PixelSensor &Sensor() const { return sensor; }
+    Float MaxComponentValue() const { return maxComponentValue; }
+    // The output colour space's RGB of the sensor's (GetPixelRGB's last step).
+    const SquareMatrix<3> &OutputRGBFromSensorRGB() const { return outputRGBFromSensorRGB; }
 
     // The wavelengths a camera sample carries (pbrt-v4: visible-importance sampled).
     SampledWavelengths SampleWavelengths(Float u) const { return SampledWavelengths::SampleVisible(u); }
@@ -96,6 +99,26 @@ class RGBFilm {
             for (int c = 0; c < 3; ++c)
                 sensorRGB[c] += Float(splatScale * splats[3 * index + c].Load());
         return Mul<RGB>(outputRGBFromSensorRGB, sensorRGB);
+    }
+
+    // What a pixel has gathered, before GetPixelRGB divides and scales it: the filter-weighted
+    // sum of the sensor's RGB, the weight sum, and the unscaled splat sums. Samples add to
+    // these, so the sums of renders of disjoint sample ranges add up to the sums of one render
+    // of them all (filmslice.h).
+    struct PixelSums {
+        double rgb[3] = {0, 0, 0};
+        double weight = 0;
+        double splat[3] = {0, 0, 0};
+    };
+    PixelSums GetPixelSums(Point2i p) const {
+        const size_t index = PixelIndex(p);
+        PixelSums sums;
+        for (int c = 0; c < 3; ++c) {
+            sums.rgb[c] = pixels[index].rgbSum[c];
+            if (!splats.empty()) sums.splat[c] = splats[3 * index + c].Load();
+        }
+        sums.weight = pixels[index].weightSum;
+        return sums;
     }
 
     // The pixels of pixelBounds; its (0, 0) is pixelBounds.pMin.

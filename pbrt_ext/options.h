@@ -17,6 +17,7 @@ struct RenderOverrides {
     std::string outFile;                     // instead of the film's filename
     bool quiet = false;                      // no progress bar, no warnings
     bool stats = false;                      // print the render statistics
+    std::optional<Point2i> resolution;       // instead of the film's x/yresolution
     std::optional<Bounds2f> cropWindow;      // instead of the film's
     std::optional<Bounds2i> pixelBounds;     // instead of the film's (wins over cropWindow)
     std::optional<PathStrategy> strategy;    // instead of the integrator's "mis"

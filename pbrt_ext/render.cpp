@@ -21,6 +21,8 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <variant>
 #include <vector>
 
@@ -135,6 +137,21 @@ Integrator MakeIntegrator(Scene &scene, const RenderOptions &options) {
 
 }  // namespace
 
+SampleRange SamplesToRender(const Scene &scene, const RenderOptions &options) {
+    const int spp = scene.sampler.SamplesPerPixel();
+    if (!options.samples)
+        return {0, spp};
+    const SampleRange r = *options.samples;
+    if (r.first < 0 || r.first >= r.last || r.last > spp)
+        throw std::invalid_argument("the sample range " + std::to_string(r.first) + ":" +
+                                    std::to_string(r.last) + " is empty or outside the sampler's 0:" +
+                                    std::to_string(spp));
+    if (scene.integratorOptions.type == IntegratorType::SPPM)
+        throw std::invalid_argument("sppm renders no sample range: each iteration narrows the "
+                                    "radius the next one gathers photons in");
+    return r;
+}
+
 std::string RenderStatistics::ToString() const {
     char buf[512];
     std::snprintf(buf, sizeof(buf),
@@ -147,6 +164,7 @@ std::string RenderStatistics::ToString() const {
 }
 
 RenderStatistics Render(Scene &scene, const RenderOptions &options) {
+    const SampleRange samples = SamplesToRender(scene, options);
     std::unique_ptr<tbb::global_control> threads;
     if (options.nThreads > 0)
         threads = std::make_unique<tbb::global_control>(
@@ -156,16 +174,16 @@ RenderStatistics Render(Scene &scene, const RenderOptions &options) {
     const Integrator integrator = MakeIntegrator(scene, options);
     const Bounds2i pixels = scene.film.PixelBounds();
     const std::vector<Bounds2i> tiles = Tiles(pixels);
-    std::vector<int> tileSamples(tiles.size(), 0);  // every pixel of tile t has [0, tileSamples[t])
-    const int spp = scene.sampler.SamplesPerPixel();
-    ProgressReporter progress(int64_t(pixels.Area()) * spp, "Rendering", options.quiet);
+    // Every pixel of tile t has samples [samples.first, tileSamples[t]).
+    std::vector<int> tileSamples(tiles.size(), samples.first);
+    ProgressReporter progress(int64_t(pixels.Area()) * samples.Count(), "Rendering", options.quiet);
     tbb::enumerable_thread_specific<ThreadCounts> counts;
 
-    int waveStart = 0, waveSize = 1;
-    while (waveStart < spp) {
-        const int waveEnd = std::min(spp, waveStart + waveSize);
+    int waveStart = samples.first, waveSize = 1;
+    while (waveStart < samples.last) {
+        const int waveEnd = std::min(samples.last, waveStart + waveSize);
         // The first wave ignores cancellation, so that every pixel has a sample.
-        const bool cancellable = waveStart > 0;
+        const bool cancellable = waveStart > samples.first;
         tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
             if (cancellable && Cancelled(options))
                 return;
@@ -180,18 +198,18 @@ RenderStatistics Render(Scene &scene, const RenderOptions &options) {
         const bool timeUp = options.timeLimitSeconds > 0 && elapsed >= options.timeLimitSeconds;
         if (Cancelled(options) || timeUp)
             break;
-        waveSize = NextWaveSize(waveSize, waveStart, elapsed, options.timeLimitSeconds);
+        waveSize = NextWaveSize(waveSize, waveStart - samples.first, elapsed, options.timeLimitSeconds);
     }
     progress.Done();
 
     RenderStatistics stats;
     stats.seconds = progress.ElapsedSeconds();
     const auto [fewest, most] = std::minmax_element(tileSamples.begin(), tileSamples.end());
-    stats.samplesPerPixel = *fewest;
-    stats.maxSamplesPerPixel = *most;
-    stats.cancelled = stats.samplesPerPixel < spp && Cancelled(options);
+    stats.samplesPerPixel = *fewest - samples.first;
+    stats.maxSamplesPerPixel = *most - samples.first;
+    stats.cancelled = stats.samplesPerPixel < samples.Count() && Cancelled(options);
     for (size_t t = 0; t < tiles.size(); ++t)
-        stats.cameraSamples += int64_t(tiles[t].Area()) * tileSamples[t];
+        stats.cameraSamples += int64_t(tiles[t].Area()) * (tileSamples[t] - samples.first);
     // Splats came from one light path per camera sample, spread over the pixels.
     if (stats.cameraSamples > 0) {
         Float splatScale = Float(double(pixels.Area()) / double(stats.cameraSamples));

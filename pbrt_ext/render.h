@@ -4,11 +4,19 @@
 
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace pbrt {
 
 class Scene;
+
+// Sample indices [first, last) of every pixel.
+struct SampleRange {
+    int first = 0, last = 0;
+    int Count() const { return last - first; }
+    friend bool operator==(const SampleRange &, const SampleRange &) = default;
+};
 
 struct RenderOptions {
     int nThreads = 0;  // 0: all cores
@@ -21,6 +29,12 @@ struct RenderOptions {
     // signal handler included; the library never installs one (cmd/interrupt.h does, for the
     // command line). nullptr: never cancelled.
     const std::atomic<bool> *cancel = nullptr;
+    // Only these sample indices of the scene's sampler (which keeps its samples per pixel, so
+    // that each index gives the sample it gives in a full render); unset: all of them. A render
+    // of a range is a slice that merges exactly with the others (filmslice.h). Must lie within
+    // [0, samples per pixel) and not be empty (std::invalid_argument otherwise), and the
+    // integrator's samples must be independent of each other: not sppm.
+    std::optional<SampleRange> samples = std::nullopt;
 };
 
 struct RenderStatistics {
@@ -28,7 +42,9 @@ struct RenderStatistics {
     int64_t cameraSamples = 0;
     int64_t closestRays = 0, shadowRays = 0;
     int64_t discardedSamples = 0;  // radiance NaN or infinite: counted, never written
-    int samplesPerPixel = 0;       // taken by every pixel (fewer than asked when stopped early)
+    // Taken by every pixel (fewer than asked when stopped early); of a sample range, those from
+    // its first index on.
+    int samplesPerPixel = 0;
     int maxSamplesPerPixel = 0;    // taken by some pixels: more only when cancelled mid-wave
     bool cancelled = false;        // RenderOptions::cancel stopped it before every sample was taken
 
@@ -36,6 +52,10 @@ struct RenderStatistics {
     double RaysPerSecond() const { return (closestRays + shadowRays) / seconds; }
     std::string ToString() const;
 };
+
+// The sample indices Render takes: options.samples, or all of the sampler's. Throws
+// std::invalid_argument for a range outside the sampler's or under sppm.
+SampleRange SamplesToRender(const Scene &scene, const RenderOptions &options);
 
 // Renders every pixel of the scene's film; the film accumulates the result. Samples are taken in
 // waves over the image, as pbrt-v4 does: sample indices [0, 1), [1, 3), [3, 7), ..., each wave

@@ -1,10 +1,12 @@
 // pbrt_ext: renders a pbrt-v4 scene file.
 //
-// Usage: pbrt_ext [options] scene.pbrt. Every option is documented by --help with its default; an
-// unknown option is an error. Bad input (scene, meshes, images, options) is reported as
+// Usage: pbrt_ext [options] scene.pbrt, or pbrt_ext merge OUT.exr SLICE.exr... (cmd/merge.h).
+// Every option is documented by --help with its default; an unknown option is an error. Bad input (scene, meshes, images, options) is reported as
 // "file:line:col: error: ..." with a non-zero exit, and no image is written. Ctrl-C during the
 // render writes the image rendered so far and exits with status 130 (cmd/interrupt.h).
 #include "pbrt_ext/cmd/interrupt.h"
+#include "pbrt_ext/cmd/merge.h"
+#include "pbrt_ext/filmslice.h"
 #include "pbrt_ext/lightsamplers.h"
 #include "pbrt_ext/options.h"
 #include "pbrt_ext/render.h"
@@ -14,7 +16,10 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -25,7 +30,19 @@ namespace {
 struct CommandLine {
     std::string sceneFile;
     RenderOverrides overrides;
+    std::optional<SampleRange> samples;  // --samples: render a slice (filmslice.h)
 };
+
+// "A:B" with 0 <= A < B; throws CLI::ValidationError otherwise.
+SampleRange ParseSampleRange(const std::string &text) {
+    SampleRange r;
+    char colon = 0, rest = 0;
+    std::istringstream in(text);
+    if (!(in >> r.first >> colon >> r.last) || colon != ':' || (in >> rest) || r.first < 0 ||
+        r.last <= r.first)
+        throw CLI::ValidationError("--samples", "\"" + text + "\": expected A:B with 0 <= A < B");
+    return r;
+}
 
 // Parses argv into the overrides; returns an exit code when the program should stop (help, or an
 // error that CLI11 already printed), or -1 to go on.
@@ -36,7 +53,8 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
     int spp = 0;
     std::string strategy, fabricSampler;
     std::vector<float> crop;
-    std::vector<int> pixels;
+    std::vector<int> pixels, resolution;
+    std::string samples;
     app.add_option("scene", cmd->sceneFile, "pbrt-v4 scene file")->required();
     app.add_option("--spp", spp, "samples per pixel (default: the scene's Sampler)");
     app.add_option("--nthreads", o.nThreads, "render threads (default: 0, all cores)");
@@ -46,6 +64,15 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
                    "scene's Film filename)");
     app.add_flag("--quiet", o.quiet, "no progress bar and no warnings (default: off)");
     app.add_flag("--stats", o.stats, "print render statistics at the end (default: off)");
+    app.add_option("--resolution", resolution,
+                   "x y: the film's resolution instead of its xresolution and yresolution "
+                   "(default: the scene's)")
+        ->expected(2)
+        ->check(CLI::Range(1, 1 << 24));
+    app.add_option("--samples", samples,
+                   "A:B: render only sample indices A to B-1 of every pixel, of the sampler's "
+                   "spp; the EXR keeps what `pbrt_ext merge` needs to add slices up to the "
+                   "render of all their samples (default: all samples)");
     app.add_option("--cropwindow", crop, "x0 x1 y0 y1: render only this part of the image, in "
                                          "[0, 1] (default: the scene's)")
         ->expected(4);
@@ -79,6 +106,10 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
                 throw CLI::ValidationError("--spp", "must be positive");
             o.spp = spp;
         }
+        if (resolution.size() == 2)
+            o.resolution = Point2i(resolution[0], resolution[1]);
+        if (!samples.empty())
+            cmd->samples = ParseSampleRange(samples);
         if (crop.size() == 4)
             o.cropWindow = Bounds2f(Point2f(crop[0], crop[2]), Point2f(crop[1], crop[3]));
         if (pixels.size() == 4)
@@ -96,22 +127,29 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
     return -1;
 }
 
-// Renders the scene and writes its image: all of it, or, when Ctrl-C stopped the render, what
-// was rendered, with kInterruptedExitStatus.
-int RenderAndWriteImage(Scene &scene, const CommandLine &cmd) {
-    const RenderOverrides &o = cmd.overrides;
-    BeginInterruptibleRender();
-    if (!o.quiet) {
-        Vector2i size = scene.film.PixelBounds().Diagonal();
-        std::fprintf(stderr,
-                     "pbrt_ext: rendering %d x %d pixels at %d samples per pixel (Ctrl-C stops "
-                     "and writes the image)\n",
-                     size.x, size.y, scene.sampler.SamplesPerPixel());
-    }
-    RenderStatistics stats =
-        Render(scene, {o.nThreads, o.quiet, o.timeLimitSeconds, &RenderInterrupt()});
-    EndInterruptibleRender();
+bool IsEXRPath(const std::string &path) {
+    return path.size() >= 4 && (path.compare(path.size() - 4, 4, ".exr") == 0 ||
+                                path.compare(path.size() - 4, 4, ".EXR") == 0);
+}
 
+std::string FileContents(const std::string &path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// The film's image; for --samples, a slice of the samples every pixel took (none when Ctrl-C
+// left pixels with different counts: then the plain image, which no merge takes).
+void WriteRender(const Scene &scene, const CommandLine &cmd, const RenderStatistics &stats) {
+    if (cmd.samples && stats.samplesPerPixel == stats.maxSamplesPerPixel) {
+        const int first = cmd.samples->first;
+        FilmSlice::FromFilm(scene.film, {first, first + stats.samplesPerPixel}, stats.seconds,
+                            MakeSliceIdentity(scene, FileContents(cmd.sceneFile), cmd.overrides),
+                            cmd.sceneFile)
+            .Write(scene.film.GetFilename());
+        return;
+    }
     ImageMetadata metadata;
     metadata.samplesPerPixel = stats.samplesPerPixel;
     metadata.renderTimeSeconds = stats.seconds;
@@ -119,6 +157,36 @@ int RenderAndWriteImage(Scene &scene, const CommandLine &cmd) {
     metadata.interrupted = stats.cancelled;
     metadata.maxSamplesPerPixel = stats.maxSamplesPerPixel;
     scene.film.WriteImage(metadata);
+}
+
+// Renders the scene and writes its image: all of it, or, when Ctrl-C stopped the render, what
+// was rendered, with kInterruptedExitStatus.
+int RenderAndWriteImage(Scene &scene, const CommandLine &cmd) {
+    const RenderOverrides &o = cmd.overrides;
+    if (cmd.samples && !IsEXRPath(scene.film.GetFilename())) {
+        std::fprintf(stderr, "pbrt_ext: error: --samples: the slice's sums need an EXR file, not \"%s\"\n",
+                     scene.film.GetFilename().c_str());
+        return 2;
+    }
+    const RenderOptions options{o.nThreads, o.quiet, o.timeLimitSeconds, &RenderInterrupt(), cmd.samples};
+    SampleRange samples;
+    try {
+        samples = SamplesToRender(scene, options);
+    } catch (const std::invalid_argument &e) {
+        std::fprintf(stderr, "pbrt_ext: error: --samples: %s\n", e.what());
+        return 2;
+    }
+    BeginInterruptibleRender();
+    if (!o.quiet) {
+        Vector2i size = scene.film.PixelBounds().Diagonal();
+        std::fprintf(stderr,
+                     "pbrt_ext: rendering %d x %d pixels at %d samples per pixel (Ctrl-C stops "
+                     "and writes the image)\n",
+                     size.x, size.y, samples.Count());
+    }
+    RenderStatistics stats = Render(scene, options);
+    EndInterruptibleRender();
+    WriteRender(scene, cmd, stats);
     if (o.stats)
         std::printf("%s", stats.ToString().c_str());
     if (!stats.cancelled)
@@ -134,6 +202,8 @@ int RenderAndWriteImage(Scene &scene, const CommandLine &cmd) {
 }  // namespace
 
 int main(int argc, char **argv) {
+    if (argc >= 2 && std::strcmp(argv[1], "merge") == 0)
+        return MergeMain(argc - 1, argv + 1);
     CommandLine cmd;
     if (int exitCode = ParseCommandLine(argc, argv, &cmd); exitCode >= 0)
         return exitCode;

@@ -7,6 +7,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfStringAttribute.h>
 #include <ImfTileDescription.h>
 #include <openexr.h>
 
@@ -50,6 +51,9 @@ class EXRReader : public ImageFileReader {
             spec.isFloat = spec.isFloat && c.channel().type != Imf::UINT;
         }
         spec.nChannels = int(spec.channelNames.size());
+        for (Imf::Header::ConstIterator a = header.begin(); a != header.end(); ++a)
+            if (const auto *text = dynamic_cast<const Imf::StringAttribute *>(&a.attribute()))
+                spec.stringAttributes[a.name()] = text->value();
         // OpenEXR decodes a block of scanlines at a time, compressed and uncompressed (a row of
         // tiles for a tiled file), however few rows the image has: a header 2 million pixels
         // wide declares gigabytes of it (found by the image fuzz target, docs/fuzzing.md).

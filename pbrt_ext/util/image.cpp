@@ -142,7 +142,16 @@ std::string ColorEncoding::ToString() const {
     }
 }
 
-Image Image::Read(const std::string &path, ColorEncoding encoding, ImageChannels channels) {
+namespace {
+
+// Every channel of every pixel of the file as float, after the checks that keep a corrupt or
+// hostile header from allocating what it declares.
+struct RawImage {
+    ImageFileSpec spec;
+    std::vector<float> pixels;  // spec.nChannels per pixel, row-major
+};
+
+RawImage ReadRawImage(const std::string &path) {
     CheckDeclaredSizes(path);  // before a decoder allocates what a corrupt header declares
     std::unique_ptr<ImageFileReader> in;
     try {
@@ -163,17 +172,41 @@ Image Image::Read(const std::string &path, ColorEncoding encoding, ImageChannels
                 fmt::format("the {} x {} image of {} channel{}", spec.width, spec.height,
                             spec.nChannels, spec.nChannels == 1 ? "" : "s"),
                 SaturatingProduct({uint64_t(spec.width), uint64_t(spec.height),
-                                   uint64_t(spec.nChannels) + NChannels(), sizeof(float)}));
+                                   uint64_t(spec.nChannels) + Image::NChannels(), sizeof(float)}));
     CheckMemory(FileLoc{path, 0, 0},
                 fmt::format("decoding the {} x {} image", spec.width, spec.height),
                 spec.decodeBufferBytes);
 
-    std::vector<float> raw(size_t(spec.width) * size_t(spec.height) * size_t(spec.nChannels));
+    RawImage raw{spec, std::vector<float>(size_t(spec.width) * size_t(spec.height) * size_t(spec.nChannels))};
     try {
-        in->ReadPixels(raw.data());
+        in->ReadPixels(raw.pixels.data());
     } catch (const std::runtime_error &e) {
         ThrowFileError(path, e.what());
     }
+    return raw;
+}
+
+}  // namespace
+
+EXRChannels ReadEXRChannels(const std::string &path) {
+    if (ImageFileFormatOf(path) != ImageFileFormat::EXR)
+        ThrowFileError(path, "not an OpenEXR file");
+    RawImage raw = ReadRawImage(path);
+    const ImageFileSpec &spec = raw.spec;
+    EXRChannels contents{Point2i(spec.width, spec.height), {}, spec.stringAttributes};
+    const size_t nPixels = size_t(spec.width) * size_t(spec.height), stride = size_t(spec.nChannels);
+    for (size_t c = 0; c < stride; ++c) {
+        std::vector<float> &values = contents.channels[spec.channelNames[c]];
+        values.resize(nPixels);
+        for (size_t i = 0; i < nPixels; ++i) values[i] = raw.pixels[i * stride + c];
+    }
+    return contents;
+}
+
+Image Image::Read(const std::string &path, ColorEncoding encoding, ImageChannels channels) {
+    const RawImage rawImage = ReadRawImage(path);
+    const ImageFileSpec &spec = rawImage.spec;
+    const std::vector<float> &raw = rawImage.pixels;
 
     // Integer pixels are display-encoded; float pixels are radiometric already.
     if (spec.isFloat) encoding = ColorEncoding::Linear();
@@ -225,16 +258,25 @@ void Image::SetChannel(Point2i p, int c, Float value) {
     pixels[3 * PixelIndex(p) + size_t(c)] = value;
 }
 
-void Image::Write(const std::string &path, const ImageMetadata &metadata) const {
+void Image::Write(const std::string &path, const ImageMetadata &metadata,
+                  const std::vector<ImageExtraChannel> &extraChannels) const {
     if (Empty()) ThrowFileError(path, "cannot write an image without pixels");
+    const size_t nPixels = size_t(resolution.x) * size_t(resolution.y);
+    for (const ImageExtraChannel &channel : extraChannels)
+        if (channel.values.size() != nPixels)
+            ThrowFileError(path, "channel \"" + channel.name + "\" has " +
+                                     std::to_string(channel.values.size()) + " values for " +
+                                     std::to_string(nPixels) + " pixels");
     if (LowercaseExtension(path) == ".exr")
-        WriteFileAtomically(path, [&](const std::string &tmp) { WriteEXR(path, tmp, metadata); });
-    else
+        WriteFileAtomically(path, [&](const std::string &tmp) { WriteEXR(path, tmp, metadata, extraChannels); });
+    else if (extraChannels.empty())
         WriteFileAtomically(path, [&](const std::string &tmp) { Write8Bit(path, tmp); });
+    else
+        ThrowFileError(path, "only OpenEXR files keep channels besides R, G and B: use .exr");
 }
 
-void Image::WriteEXR(const std::string &path, const std::string &tmpPath,
-                     const ImageMetadata &metadata) const {
+void Image::WriteEXR(const std::string &path, const std::string &tmpPath, const ImageMetadata &metadata,
+                     const std::vector<ImageExtraChannel> &extraChannels) const {
     // Without crop information the data window is the whole image at the origin.
     Bounds2i dataBounds = metadata.pixelBounds.value_or(Bounds2i(Point2i(0, 0), resolution));
     Point2i full = metadata.fullResolution.value_or(dataBounds.pMax);
@@ -277,6 +319,16 @@ void Image::WriteEXR(const std::string &path, const std::string &tmpPath,
     Imf::FrameBuffer frameBuffer;
     for (int c = 0; c < 3; ++c)
         frameBuffer.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+    for (const ImageExtraChannel &channel : extraChannels) {
+        if (header.channels().findChannel(channel.name))
+            ThrowFileError(path, "channel \"" + channel.name + "\" is written twice");
+        header.channels().insert(channel.name, Imf::Channel(Imf::FLOAT));
+        char *extraBase = reinterpret_cast<char *>(const_cast<float *>(channel.values.data())) -
+                          ptrdiff_t(dataBounds.pMin.x) * ptrdiff_t(sizeof(float)) -
+                          ptrdiff_t(dataBounds.pMin.y) * ptrdiff_t(sizeof(float) * size_t(resolution.x));
+        frameBuffer.insert(channel.name, Imf::Slice(Imf::FLOAT, extraBase, sizeof(float),
+                                                    sizeof(float) * size_t(resolution.x)));
+    }
     try {
         Imf::OutputFile file(tmpPath.c_str(), header);
         file.setFrameBuffer(frameBuffer);

@@ -155,6 +155,22 @@ struct ImageMetadata {
 
 enum class ImageChannels { RGB, AlphaOfRGBA };
 
+// A float channel an EXR holds besides R, G and B: one value per pixel, row-major (a film
+// slice's sums, filmslice.h).
+struct ImageExtraChannel {
+    std::string name;
+    std::vector<float> values;
+};
+
+// Every channel of an EXR by name, and its string attributes.
+struct EXRChannels {
+    Point2i resolution;
+    std::map<std::string, std::vector<float>> channels;  // one value per pixel, row-major
+    std::map<std::string, std::string> stringAttributes;
+};
+// Throws std::runtime_error("<path>: error: <what>"), also for a file that is not OpenEXR.
+EXRChannels ReadEXRChannels(const std::string &path);
+
 class Image {
   public:
     static constexpr int NChannels() { return 3; }
@@ -219,11 +235,13 @@ class Image {
     // pbrt-v4 decodes it; any other file is read as RGB.
     static Image Read(const std::string &path, ColorEncoding encoding = ColorEncoding::SRGB(),
                       ImageChannels channels = ImageChannels::RGB);
-    void Write(const std::string &path, const ImageMetadata &metadata = {}) const;
+    // extraChannels need an EXR path; each has a value per pixel.
+    void Write(const std::string &path, const ImageMetadata &metadata = {},
+               const std::vector<ImageExtraChannel> &extraChannels = {}) const;
 
   private:
-    void WriteEXR(const std::string &path, const std::string &tmpPath,
-                  const ImageMetadata &metadata) const;
+    void WriteEXR(const std::string &path, const std::string &tmpPath, const ImageMetadata &metadata,
+                  const std::vector<ImageExtraChannel> &extraChannels) const;
     void Write8Bit(const std::string &path, const std::string &tmpPath) const;
     // An 8-bit image's pixels as float RGB, row-major.
     std::vector<Float> DecodeBytes() const;

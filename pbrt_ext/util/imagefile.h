@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,8 @@ struct ImageFileSpec {
     bool isFloat = false;  // float, half or double samples: linear, whatever the caller's encoding
     bool is8Bit = false;   // 8-bit samples, which ReadPixels() gives as byte / 255
     std::vector<std::string> channelNames;
+    // The header's string attributes (EXR only: a film slice's description, filmslice.h).
+    std::map<std::string, std::string> stringAttributes;
     // What the decoder allocates besides the float pixels it returns, from the header alone.
     uint64_t decodeBufferBytes = 0;
 };
