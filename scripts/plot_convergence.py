@@ -24,7 +24,12 @@ import json
 import os
 from collections import defaultdict
 
+import sys
+
 import matplotlib
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
+from convergencefit import fit_c, reference_floor, seconds_per_spp  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend choice)
@@ -53,26 +58,6 @@ def load(path):
         for points in by_key.values():
             points.sort()
     return series, reference_spp
-
-
-def reference_floor(points, n_ref):
-    """The reference's own relMSE, c_ref / n_ref, from the series rendered like the reference:
-    there relMSE = c_ref * (1 / spp + 1 / n_ref)."""
-    c_ref = [rel / (1 / spp + 1 / n_ref) for spp, _, rel in points]
-    return sorted(c_ref)[len(c_ref) // 2] / n_ref
-
-
-def fit_c(points, floor):
-    """c of relMSE = floor + c / spp, least squares in relative error so every spp counts alike."""
-    num = sum((rel - floor) / spp / rel**2 for spp, _, rel in points)
-    den = sum(1 / spp**2 / rel**2 for spp, _, rel in points)
-    return max(num / den, 1e-12)
-
-
-def seconds_per_spp(points):
-    """From the largest spp, where fixed costs (tiles, threads) matter least."""
-    spp, seconds, _ = max(points)
-    return seconds / spp
 
 
 def fit(series, reference_spp):

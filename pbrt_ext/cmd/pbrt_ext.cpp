@@ -30,18 +30,23 @@ namespace {
 struct CommandLine {
     std::string sceneFile;
     RenderOverrides overrides;
-    std::optional<SampleRange> samples;  // --samples: render a slice (filmslice.h)
+    // --samples: render a slice (filmslice.h), indices A:B or part k/K of the sampler's.
+    std::string samples;
 };
 
-// "A:B" with 0 <= A < B; throws CLI::ValidationError otherwise.
-SampleRange ParseSampleRange(const std::string &text) {
-    SampleRange r;
-    char colon = 0, rest = 0;
+// "A:B" with 0 <= A < B, or "k/K" with 0 <= k < K: the k-th of K ranges as equal as spp
+// allows. Throws CLI::ValidationError otherwise.
+SampleRange ParseSampleRange(const std::string &text, int spp) {
+    long a = 0, b = 0;
+    char separator = 0, rest = 0;
     std::istringstream in(text);
-    if (!(in >> r.first >> colon >> r.last) || colon != ':' || (in >> rest) || r.first < 0 ||
-        r.last <= r.first)
-        throw CLI::ValidationError("--samples", "\"" + text + "\": expected A:B with 0 <= A < B");
-    return r;
+    bool ok = (in >> a >> separator >> b) && !(in >> rest) && a >= 0 && a < b && b <= (1 << 30);
+    if (ok && separator == ':')
+        return {int(a), int(b)};
+    if (ok && separator == '/' && b <= spp)
+        return {int(a * spp / b), int((a + 1) * spp / b)};
+    throw CLI::ValidationError("--samples", "\"" + text + "\": expected A:B with 0 <= A < B, or k/K with "
+                               "0 <= k < K <= the samples per pixel (" + std::to_string(spp) + ")");
 }
 
 // Parses argv into the overrides; returns an exit code when the program should stop (help, or an
@@ -54,7 +59,6 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
     std::string strategy, fabricSampler;
     std::vector<float> crop;
     std::vector<int> pixels, resolution;
-    std::string samples;
     app.add_option("scene", cmd->sceneFile, "pbrt-v4 scene file")->required();
     app.add_option("--spp", spp, "samples per pixel (default: the scene's Sampler)");
     app.add_option("--nthreads", o.nThreads, "render threads (default: 0, all cores)");
@@ -69,10 +73,11 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
                    "(default: the scene's)")
         ->expected(2)
         ->check(CLI::Range(1, 1 << 24));
-    app.add_option("--samples", samples,
-                   "A:B: render only sample indices A to B-1 of every pixel, of the sampler's "
-                   "spp; the EXR keeps what `pbrt_ext merge` needs to add slices up to the "
-                   "render of all their samples (default: all samples)");
+    app.add_option("--samples", cmd->samples,
+                   "A:B or k/K: render only sample indices A to B-1 of every pixel, or the k-th "
+                   "of K equal parts (from 0), of the sampler's spp; the EXR keeps what "
+                   "`pbrt_ext merge` needs to add slices up to the render of all their samples "
+                   "(default: all samples)");
     app.add_option("--cropwindow", crop, "x0 x1 y0 y1: render only this part of the image, in "
                                          "[0, 1] (default: the scene's)")
         ->expected(4);
@@ -108,8 +113,6 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
         }
         if (resolution.size() == 2)
             o.resolution = Point2i(resolution[0], resolution[1]);
-        if (!samples.empty())
-            cmd->samples = ParseSampleRange(samples);
         if (crop.size() == 4)
             o.cropWindow = Bounds2f(Point2f(crop[0], crop[2]), Point2f(crop[1], crop[3]));
         if (pixels.size() == 4)
@@ -141,9 +144,10 @@ std::string FileContents(const std::string &path) {
 
 // The film's image; for --samples, a slice of the samples every pixel took (none when Ctrl-C
 // left pixels with different counts: then the plain image, which no merge takes).
-void WriteRender(const Scene &scene, const CommandLine &cmd, const RenderStatistics &stats) {
-    if (cmd.samples && stats.samplesPerPixel == stats.maxSamplesPerPixel) {
-        const int first = cmd.samples->first;
+void WriteRender(const Scene &scene, const CommandLine &cmd, std::optional<SampleRange> samples,
+                 const RenderStatistics &stats) {
+    if (samples && stats.samplesPerPixel == stats.maxSamplesPerPixel) {
+        const int first = samples->first;
         FilmSlice::FromFilm(scene.film, {first, first + stats.samplesPerPixel}, stats.seconds,
                             MakeSliceIdentity(scene, FileContents(cmd.sceneFile), cmd.overrides),
                             cmd.sceneFile)
@@ -163,15 +167,20 @@ void WriteRender(const Scene &scene, const CommandLine &cmd, const RenderStatist
 // was rendered, with kInterruptedExitStatus.
 int RenderAndWriteImage(Scene &scene, const CommandLine &cmd) {
     const RenderOverrides &o = cmd.overrides;
-    if (cmd.samples && !IsEXRPath(scene.film.GetFilename())) {
+    if (!cmd.samples.empty() && !IsEXRPath(scene.film.GetFilename())) {
         std::fprintf(stderr, "pbrt_ext: error: --samples: the slice's sums need an EXR file, not \"%s\"\n",
                      scene.film.GetFilename().c_str());
         return 2;
     }
-    const RenderOptions options{o.nThreads, o.quiet, o.timeLimitSeconds, &RenderInterrupt(), cmd.samples};
+    RenderOptions options{o.nThreads, o.quiet, o.timeLimitSeconds, &RenderInterrupt()};
     SampleRange samples;
     try {
+        if (!cmd.samples.empty())
+            options.samples = ParseSampleRange(cmd.samples, scene.sampler.SamplesPerPixel());
         samples = SamplesToRender(scene, options);
+    } catch (const CLI::ValidationError &e) {
+        std::fprintf(stderr, "pbrt_ext: error: %s\n", e.what());
+        return 2;
     } catch (const std::invalid_argument &e) {
         std::fprintf(stderr, "pbrt_ext: error: --samples: %s\n", e.what());
         return 2;
@@ -186,7 +195,7 @@ int RenderAndWriteImage(Scene &scene, const CommandLine &cmd) {
     }
     RenderStatistics stats = Render(scene, options);
     EndInterruptibleRender();
-    WriteRender(scene, cmd, stats);
+    WriteRender(scene, cmd, options.samples, stats);
     if (o.stats)
         std::printf("%s", stats.ToString().c_str());
     if (!stats.cancelled)

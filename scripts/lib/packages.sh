@@ -27,6 +27,9 @@ project_packages=(
   build-essential cmake ninja-build
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-matplotlib
+  # distributed studies and renders (scripts/study, scripts/render-distributed): Dask, and
+  # OpenImageIO's Python module to read their images
+  python3-distributed python3-dask python3-openimageio
   # the renderer: ray tracing, images (PNG, EXR; stb_image for TGA, JPEG and the other formats
   # pbrt-v4 reads with it; OpenImageIO for the rest), threads, command line,
   # scene data, formatting,

@@ -1,0 +1,79 @@
+"""The Dask cluster a study or a distributed render runs on, and its progress bar.
+
+Without a scheduler address: a local cluster of worker processes on this machine, one per
+render (each render has its own threads), started and stopped with the run. With
+--scheduler tcp://HOST:8786: any running Dask cluster (dask-scheduler plus dask-worker on each
+machine, or an SSH, SLURM or Kubernetes deployment); its workers need the binary, the scenes and
+the study folder at the same paths (docs/distributed.md).
+"""
+import contextlib
+import os
+import sys
+import time
+
+LIB = os.path.dirname(os.path.abspath(__file__))
+
+
+@contextlib.contextmanager
+def connect(scheduler=None, workers=None):
+    """A distributed.Client; workers: local worker processes (default: one per 2 cores)."""
+    import dask
+    from distributed import Client, LocalCluster
+    # Quiet workers: pbrt_ext's failures are reported per task, not as worker logs.
+    dask.config.set({"distributed.logging.distributed": "error",
+                     "distributed.scheduler.allowed-failures": 3})
+    if scheduler:
+        client = Client(scheduler)
+        cluster = None
+    else:
+        n = workers or max(1, (os.cpu_count() or 2) // 2)
+        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                               dashboard_address=":0", silence_logs=40)
+        client = Client(cluster)
+    try:
+        # Workers import the task module from the file the client sends.
+        client.upload_file(os.path.join(LIB, "studytasks.py"))
+        yield client
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+class ProgressBar:
+    """[#####.....] done/total what, elapsed, ETA: on one line on a terminal, a line every 10 %
+    otherwise (CI logs)."""
+
+    def __init__(self, total, what, stream=sys.stderr):
+        self.total, self.what, self.stream = total, what, stream
+        self.done = 0
+        self.start = time.monotonic()
+        self.tty = stream.isatty()
+        self.last_tenth = -1
+        self.show()
+
+    def advance(self, n=1):
+        self.done += n
+        self.show()
+
+    def elapsed(self):
+        return time.monotonic() - self.start
+
+    @staticmethod
+    def _clock(seconds):
+        seconds = int(seconds)
+        return f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
+
+    def show(self):
+        elapsed = time.monotonic() - self.start
+        fraction = self.done / self.total if self.total else 1
+        eta = "?" if self.done == 0 else self._clock(elapsed / self.done * (self.total - self.done))
+        bar = "#" * int(30 * fraction) + "." * (30 - int(30 * fraction))
+        line = (f"[{bar}] {self.done}/{self.total} {self.what}, {self._clock(elapsed)} elapsed, "
+                f"ETA {eta}")
+        if self.tty:
+            self.stream.write("\r" + line + ("\n" if self.done >= self.total else ""))
+        elif int(10 * fraction) > self.last_tenth:
+            self.last_tenth = int(10 * fraction)
+            self.stream.write(line + "\n")
+        self.stream.flush()

@@ -1,0 +1,208 @@
+"""A study file (TOML): which scenes to render in which configurations, and their reference.
+
+    name = "fabric-samplers"        # default: the file's name without .toml
+    scenes = ["cylinder_r0.1.pbrt", "cornell_fabric.pbrt"]   # relative to the study file
+    strategies = ["bsdf", "light", "mis"]              # pbrt_ext --strategy
+    fabric_samplers = ["uniform", "paper", "best"]     # --fabric-sampler
+    light_samplers = ["bvh", "power"]                  # --light-sampler
+    samplers = ["independent", "zsobol"]               # --sampler
+    integrators = ["path", "bdpt"]                     # --integrator
+    spp = [4, 16, 64]                                  # --spp (required)
+    seeds = [0, 1]                                     # --seed (default [0])
+    resolution = [128, 96]          # --resolution for every render (default: each scene's)
+    threads = 1                     # --nthreads per render (default 1)
+    timeout = 600                   # seconds a render may take before it counts as failed
+    binary = "../build/release/pbrt_ext/cmd/pbrt_ext"  # default: this checkout's release build
+
+    [reference]                     # one per scene, rendered first, split into slices
+    spp = 4096
+    seed = 1000                     # must not be one of seeds
+    slices = 8
+    integrator = { caustic_fabric = "bdpt" }   # per scene name (default: the scene's)
+
+    [report]
+    baseline = { fabric_sampler = "best", strategy = "mis" }   # what ratios are relative to
+
+A list left out (or empty) is the scene's own choice. Every combination of the lists is one
+configuration. A reference uses MIS, the best fabric sampler and the scene's other choices.
+"""
+import hashlib
+import itertools
+import json
+import os
+import re
+import tomllib
+from dataclasses import dataclass, field
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+DEFAULT_BINARY = os.path.join(REPO, "build", "release", "pbrt_ext", "cmd", "pbrt_ext")
+
+# Study-file key -> (configuration field, pbrt_ext option).
+DIMENSIONS = {
+    "strategies": ("strategy", "--strategy"),
+    "fabric_samplers": ("fabric_sampler", "--fabric-sampler"),
+    "light_samplers": ("light_sampler", "--light-sampler"),
+    "samplers": ("sampler", "--sampler"),
+    "integrators": ("integrator", "--integrator"),
+}
+FIELDS = ["scene", *[f for f, _ in DIMENSIONS.values()], "spp", "seed"]
+
+
+class StudyError(Exception):
+    """A study file that cannot be run: the message names the file."""
+
+
+@dataclass
+class Scene:
+    name: str   # the file name without .pbrt
+    path: str   # absolute
+    hash: str   # of the file and the files it includes
+
+
+@dataclass
+class Study:
+    path: str
+    name: str
+    binary: str
+    scenes: list
+    choices: dict            # configuration field -> list of values ([None]: the scene's)
+    spp: list
+    seeds: list
+    resolution: list = None
+    threads: int = 1
+    timeout: float = 600
+    reference_spp: int = 4096
+    reference_seed: int = 1000
+    reference_slices: int = 8
+    reference_integrator: dict = field(default_factory=dict)
+    baseline: dict = field(default_factory=dict)
+
+    @property
+    def folder(self):
+        """Beside the study file: the database, the references, the report."""
+        return os.path.splitext(self.path)[0] + ".study"
+
+    @property
+    def database(self):
+        return os.path.join(self.folder, "results.sqlite")
+
+    def common_args(self):
+        args = ["--nthreads", str(self.threads)]
+        if self.resolution:
+            args += ["--resolution", *map(str, self.resolution)]
+        return args
+
+    def configurations(self):
+        """Every configuration: a dict of FIELDS, None where the scene chooses."""
+        for scene in self.scenes:
+            dims = [self.choices[f] for f, _ in DIMENSIONS.values()]
+            for values in itertools.product(*dims, self.spp, self.seeds):
+                yield dict(zip(FIELDS, [scene.name, *values]))
+
+    def configuration_key(self, config):
+        """What identifies a result: the configuration and what else decides its numbers."""
+        return json.dumps({**config, "resolution": self.resolution, "threads": self.threads,
+                           "reference": [self.reference_spp, self.reference_seed]},
+                          sort_keys=True)
+
+    def render_args(self, config):
+        args = ["--spp", str(config["spp"]), "--seed", str(config["seed"]), *self.common_args()]
+        for f, option in DIMENSIONS.values():
+            if config[f] is not None:
+                args += [option, str(config[f])]
+        return args
+
+    def reference_args(self, scene, first, last):
+        args = ["--spp", str(self.reference_spp), "--seed", str(self.reference_seed),
+                *self.common_args(), "--strategy", "mis", "--fabric-sampler", "best",
+                "--samples", f"{first}:{last}"]
+        if scene.name in self.reference_integrator:
+            args += ["--integrator", self.reference_integrator[scene.name]]
+        return args
+
+    def reference_slices_of(self):
+        """The sample ranges of the reference's slices: as equal as the count allows."""
+        k = max(1, min(self.reference_slices, self.reference_spp))
+        bounds = [self.reference_spp * i // k for i in range(k + 1)]
+        return list(zip(bounds[:-1], bounds[1:]))
+
+    def reference_path(self, scene):
+        return os.path.join(self.folder, "references",
+                            f"{scene.name}.spp{self.reference_spp}.seed{self.reference_seed}.exr")
+
+
+def scene_hash(path, seen=None):
+    """SHA-256 (16 hex digits) of the scene file and, recursively, the files it Includes or
+    Imports (named relative to the main file's folder, as pbrt-v4 resolves them)."""
+    seen = seen if seen is not None else set()
+    digest = hashlib.sha256()
+    root = os.path.dirname(path)
+
+    def add(file):
+        if file in seen or not os.path.isfile(file):
+            return
+        seen.add(file)
+        with open(file, "rb") as f:
+            text = f.read()
+        digest.update(text)
+        for name in re.findall(rb'^\s*(?:Include|Import)\s+"([^"]+)"', text, re.MULTILINE):
+            add(os.path.join(root, name.decode()))
+
+    add(path)
+    return digest.hexdigest()[:16]
+
+
+def _list(data, key, path, kind):
+    value = data.get(key, [])
+    if not isinstance(value, list) or not all(isinstance(v, kind) for v in value):
+        raise StudyError(f"{path}: error: \"{key}\" must be a list of {kind.__name__}s")
+    return value
+
+
+def load(path):
+    """The study of the file; raises StudyError for anything missing or misspelt."""
+    path = os.path.abspath(path)
+    try:
+        with open(path, "rb") as f:
+            data = tomllib.load(f)
+    except (OSError, tomllib.TOMLDecodeError) as e:
+        raise StudyError(f"{path}: error: {e}") from e
+    known = {"name", "scenes", "spp", "seeds", "resolution", "threads", "timeout", "binary",
+             "reference", "report", *DIMENSIONS}
+    unknown = sorted(set(data) - known)
+    if unknown:
+        raise StudyError(f"{path}: error: unknown key \"{unknown[0]}\"; expected one of "
+                         + ", ".join(sorted(known)))
+    folder = os.path.dirname(path)
+    scenes = []
+    for name in _list(data, "scenes", path, str):
+        scene_path = os.path.normpath(os.path.join(folder, name))
+        if not os.path.isfile(scene_path):
+            raise StudyError(f"{path}: error: scene \"{name}\" not found ({scene_path})")
+        stem = os.path.splitext(os.path.basename(scene_path))[0]
+        scenes.append(Scene(stem, scene_path, scene_hash(scene_path)))
+    spp = _list(data, "spp", path, int)
+    if not scenes or not spp:
+        raise StudyError(f"{path}: error: \"scenes\" and \"spp\" must name at least one each")
+    if len({s.name for s in scenes}) != len(scenes):
+        raise StudyError(f"{path}: error: two scenes share a file name")
+    reference = data.get("reference", {})
+    study = Study(
+        path=path, name=data.get("name", os.path.splitext(os.path.basename(path))[0]),
+        binary=os.path.normpath(os.path.join(folder, data["binary"])) if "binary" in data
+        else DEFAULT_BINARY,
+        scenes=scenes,
+        choices={f: _list(data, key, path, str) or [None] for key, (f, _) in DIMENSIONS.items()},
+        spp=spp, seeds=_list(data, "seeds", path, int) or [0],
+        resolution=data.get("resolution"), threads=data.get("threads", 1),
+        timeout=data.get("timeout", 600),
+        reference_spp=reference.get("spp", 4096), reference_seed=reference.get("seed", 1000),
+        reference_slices=reference.get("slices", 8),
+        reference_integrator=reference.get("integrator", {}),
+        baseline=data.get("report", {}).get("baseline", {}))
+    if study.reference_seed in study.seeds:
+        raise StudyError(f"{path}: error: the reference's seed {study.reference_seed} is one of "
+                         "\"seeds\": a configuration would share its samples")
+    if not os.access(study.binary, os.X_OK):
+        raise StudyError(f"{path}: error: no pbrt_ext at {study.binary} (build it: scripts/setup)")
+    return study

@@ -1,0 +1,212 @@
+"""scripts/study report: a study's tables and plots, from its database alone.
+
+Writes into the output folder
+  report.md      per scene, one row per series (the configuration's choices, spp and seed
+                 aside): relMSE at each spp (the mean over seeds), c of relMSE = floor + c / spp
+                 (convergencefit), c and efficiency 1 / (relMSE x seconds) relative to the
+                 baseline series, efficiency relative to the baseline at each spp (where
+                 low-discrepancy samplers beat 1 / spp, no single c fits), the fabric samplers'
+                 uniform : paper : best where they vary, the cost per task, and the failures;
+  relmse.png     relMSE against render time, log-log, a panel per scene, a line per series;
+  efficiency.png efficiency relative to the baseline series, per scene,
+and prints report.md.
+"""
+import os
+import statistics
+from collections import defaultdict
+
+from convergencefit import fit_c, reference_floor, seconds_per_spp
+from studydb import Database
+from studyfile import DIMENSIONS
+
+CHOICES = [f for f, _ in DIMENSIONS.values()]
+# What the reference is rendered with (studyfile.Study.reference_args); None: the scene's.
+REFERENCE_CHOICES = {"strategy": ("mis", None), "fabric_sampler": ("best", None)}
+
+
+def varying(study):
+    """The choices with more than one value: they name the series."""
+    return [f for f in CHOICES if len(study.choices[f]) > 1]
+
+
+def label(key):
+    return " / ".join(str(v) for v in key) if key else "the scene's"
+
+
+def series_of(rows, dims):
+    """{scene: {series key: [(spp, seconds, relMSE)]}}: seeds averaged per spp."""
+    by_point = defaultdict(list)
+    for r in rows:
+        by_point[(r["scene"], tuple(r[d] for d in dims), r["spp"])].append(r)
+    series = defaultdict(lambda: defaultdict(list))
+    for (scene, key, spp), rs in sorted(by_point.items(), key=lambda kv: str(kv[0])):
+        series[scene][key].append((spp, statistics.mean(r["seconds"] for r in rs),
+                                   statistics.mean(r["relmse"] for r in rs)))
+    for by_key in series.values():
+        for points in by_key.values():
+            points.sort()
+    return series
+
+
+def is_reference_like(key, dims):
+    return all(v in REFERENCE_CHOICES.get(d, (None,)) for d, v in zip(dims, key))
+
+
+def fits_of(series, dims, reference_spp):
+    """{scene: {key: c}}, after the floor of the reference's noise (from the series rendered
+    like the reference, where there is one)."""
+    fits = {}
+    for scene, by_key in series.items():
+        like = [pts for key, pts in by_key.items() if is_reference_like(key, dims)]
+        floor = reference_floor(like[0], reference_spp) if like else 0.0
+        fits[scene] = {key: fit_c(points, floor) for key, points in by_key.items()}
+    return fits
+
+
+def baseline_key(study, dims, keys):
+    wanted = tuple(study.baseline.get(d) for d in dims)
+    return wanted if wanted in keys else sorted(keys, key=str)[0]
+
+
+def fmt(value, spec):
+    return "–" if value is None or value != value else format(value, spec)
+
+
+def scene_table(study, dims, scene, by_key, c_of):
+    counts = sorted({spp for pts in by_key.values() for spp, _, _ in pts})
+    base = baseline_key(study, dims, by_key)
+    base_pts = {spp: (sec, rel) for spp, sec, rel in by_key[base]}
+    efficiency = {key: 1 / (c_of[key] * seconds_per_spp(pts)) for key, pts in by_key.items()}
+    lines = [f"### {scene} (baseline: {label(base)})", "",
+             "| series | " + " | ".join(f"relMSE {n}" for n in counts)
+             + " | c | c / baseline | efficiency / baseline | "
+             + " | ".join(f"eff. {n} / baseline" for n in counts) + " |",
+             "|---|" + "---|" * (2 * len(counts) + 3)]
+    for key, pts in sorted(by_key.items(), key=lambda kv: str(kv[0])):
+        at = {spp: (sec, rel) for spp, sec, rel in pts}
+        rel = [fmt(at[n][1] if n in at else None, ".3g") for n in counts]
+        eff = [fmt(base_pts[n][0] * base_pts[n][1] / (at[n][0] * at[n][1])
+                   if n in at and n in base_pts else None, ".2f") for n in counts]
+        lines.append(f"| {label(key)} | " + " | ".join(rel)
+                     + f" | {c_of[key]:.3g} | {c_of[key] / c_of[base]:.3g} | "
+                     + f"{efficiency[key] / efficiency[base]:.3g} | " + " | ".join(eff) + " |")
+    return lines
+
+
+def fabric_sampler_lines(dims, fits):
+    """uniform : paper : best (c relative to best) per scene and other choices, where the fabric
+    sampler varies; the paper claims uniform needs 6-8x the samples of its own sampler."""
+    if "fabric_sampler" not in dims:
+        return []
+    i = dims.index("fabric_sampler")
+    lines = ["## Fabric samplers: spp for equal error, uniform : paper : best", "",
+             "| scene | other choices | uniform : paper : best | uniform / paper (paper: 6-8) |",
+             "|---|---|---|---|"]
+    for scene, c_of in sorted(fits.items()):
+        others = sorted({key[:i] + key[i + 1:] for key in c_of}, key=str)
+        for rest in others:
+            c = {s: c_of.get(rest[:i] + (s,) + rest[i:]) for s in ("uniform", "paper", "best")}
+            if None in c.values():
+                continue
+            lines.append(f"| {scene} | {label(rest)} | {c['uniform'] / c['best']:.2f} : "
+                         f"{c['paper'] / c['best']:.2f} : 1 | {c['uniform'] / c['paper']:.2f} |")
+    return lines + [""]
+
+
+def cost_lines(rows):
+    """Per task: the render's own seconds against the whole task's (process start, scene
+    loading, reading the reference, relMSE)."""
+    ok = [r for r in rows if r["status"] == "ok" and r["wall_seconds"] is not None]
+    if not ok:
+        return []
+    overhead = [r["wall_seconds"] - r["seconds"] for r in ok]
+    render = [r["seconds"] for r in ok]
+    return ["## Cost per task", "",
+            f"{len(ok)} tasks: render {statistics.median(render):.3f} s median "
+            f"({sum(render):.1f} s in all); the rest of the task {statistics.median(overhead):.3f} s "
+            f"median, {max(overhead):.3f} s at most ({sum(overhead):.1f} s in all).", ""]
+
+
+def failure_lines(rows):
+    failed = [r for r in rows if r["status"] == "failed"]
+    if not failed:
+        return ["No configuration failed.", ""]
+    lines = [f"## Failures ({len(failed)})", "", "| scene | configuration | message |", "|---|---|---|"]
+    for r in failed:
+        config = ", ".join(f"{f} {r[f]}" for f in [*CHOICES, "spp", "seed"] if r[f] is not None)
+        message = (r["message"] or "").replace("\n", " ").replace("|", "\\|")
+        lines.append(f"| {r['scene']} | {config} | {message} |")
+    return lines + [""]
+
+
+def plot(series, dims, fits, study, out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    scenes = sorted(series)
+    cols = min(2, len(scenes))
+    rows = (len(scenes) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(6 * cols, 4.5 * rows), squeeze=False)
+    for ax, scene in zip(axes.flat, scenes):
+        for key, pts in sorted(series[scene].items(), key=lambda kv: str(kv[0])):
+            ax.loglog([p[1] for p in pts], [p[2] for p in pts], marker="o", markersize=3,
+                      label=label(key))
+        ax.set(title=scene, xlabel="render time [s]", ylabel="relMSE (mean over seeds)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    for ax in list(axes.flat)[len(scenes):]:
+        ax.axis("off")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "relmse.png"), dpi=110)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(max(6, 1.5 * len(scenes) + 3), 4.5))
+    keys = sorted({k for by_key in series.values() for k in by_key}, key=str)
+    width = 0.8 / max(1, len(keys))
+    for i, key in enumerate(keys):
+        ratios = []
+        for scene in scenes:
+            by_key, c_of = series[scene], fits[scene]
+            base = baseline_key(study, dims, by_key)
+            eff = lambda k: 1 / (c_of[k] * seconds_per_spp(by_key[k]))  # noqa: E731
+            ratios.append(eff(key) / eff(base) if key in by_key else float("nan"))
+        ax.bar([j + (i - (len(keys) - 1) / 2) * width for j in range(len(scenes))], ratios, width,
+               label=label(key))
+    ax.axhline(1, color="black", linewidth=0.8)
+    ax.set_yscale("log")
+    ax.set_xticks(range(len(scenes)), scenes, rotation=15)
+    ax.set_ylabel("efficiency / baseline's")
+    ax.legend(fontsize=7, ncol=2)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "efficiency.png"), dpi=110)
+    plt.close(fig)
+
+
+def report(study, out):
+    database = Database(study.database)
+    rows = database.results()
+    references = database.references()
+    database.close()
+    if not rows:
+        print(f"{study.database}: no results yet (scripts/study run {study.path})")
+        return 1
+    dims = varying(study)
+    ok = [r for r in rows if r["status"] == "ok"]
+    series = series_of(ok, dims)
+    fits = fits_of(series, dims, study.reference_spp)
+    lines = [f"# Study {study.name}", "",
+             f"{len(rows)} results ({len(ok)} ok) from {study.database}; references at "
+             f"{study.reference_spp} spp, seed {study.reference_seed} "
+             f"({sum(r['seconds'] or 0 for r in references):.1f} s of rendering). relMSE is the "
+             f"mean over seeds {study.seeds}; efficiency is 1 / (relMSE x seconds).", ""]
+    for scene in sorted(series):
+        lines += scene_table(study, dims, scene, series[scene], fits[scene]) + [""]
+    lines += fabric_sampler_lines(dims, fits) + cost_lines(rows) + failure_lines(rows)
+    os.makedirs(out, exist_ok=True)
+    if series:
+        plot(series, dims, fits, study, out)
+    text = "\n".join(lines)
+    with open(os.path.join(out, "report.md"), "w") as f:
+        f.write(text)
+    print(text)
+    return 0
