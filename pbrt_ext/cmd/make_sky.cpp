@@ -9,7 +9,10 @@
 // Each pixel averages 4x4 directions inside it, so the sun disk, a few pixels wide at 256x256,
 // is antialiased and its total power does not depend on where it falls on the pixel grid.
 //
-// Usage: make_sky [--resolution N] [--sun-elevation deg] [--sun-azimuth deg] out.exr
+// With --no-sun, the gradient and the ground alone: a smooth environment, as the fabric paper's
+// Fig. 3 comparison of BSDF samplers assumes (scenes/convergence/paper-fig3.toml).
+//
+// Usage: make_sky [--resolution N] [--sun-elevation deg] [--sun-azimuth deg] [--no-sun] out.exr
 #include "pbrt_ext/util/equalarea.h"
 #include "pbrt_ext/util/image.h"
 #include "pbrt_ext/util/math.h"
@@ -28,15 +31,17 @@ using namespace pbrt;
 namespace {
 
 constexpr const char *kUsage =
-    "usage: make_sky [--resolution N] [--sun-elevation deg] [--sun-azimuth deg] out.exr\n"
+    "usage: make_sky [--resolution N] [--sun-elevation deg] [--sun-azimuth deg] [--no-sun] out.exr\n"
     "  --resolution N       width and height of the square map, 4 to 4096 (default 256)\n"
     "  --sun-elevation deg  sun height above the horizon, -90 to 90 (default 35)\n"
     "  --sun-azimuth deg    sun direction about +z, from +x toward +y (default 30)\n"
+    "  --no-sun             no sun disk and no glow: the sky's gradient alone\n"
     "  out.exr              the equal-area octahedral map to write (.exr)\n";
 
 struct SkyOptions {
     int resolution = 256;
     Float sunElevation = 35, sunAzimuth = 30;  // degrees
+    bool sun = true;
     std::string outFile;
 };
 
@@ -79,6 +84,10 @@ SkyOptions ParseArguments(int argc, char **argv) {
             std::printf("%s", kUsage);
             std::exit(0);
         }
+        if (arg == "--no-sun") {
+            options.sun = false;
+            continue;
+        }
         if (arg.rfind("--", 0) != 0) {
             if (!options.outFile.empty())
                 UsageError("more than one output file (\"" + options.outFile + "\", \"" + arg + "\")");
@@ -119,12 +128,13 @@ class Sky {
         : sunDirection(SphericalDirection(std::cos(Radians(options.sunElevation)),
                                           std::sin(Radians(options.sunElevation)),
                                           Radians(options.sunAzimuth))),
-          cosSunRadius(std::cos(Radians(kSunRadiusDegrees))),
+          sun(options.sun), cosSunRadius(std::cos(Radians(kSunRadiusDegrees))),
           // Radiance that gives kSunIrradiance over the disk's solid angle 2 pi (1 - cos r).
           sunRadiance(kSunColor * (kSunIrradiance / (2 * Pi * (1 - cosSunRadius)))) {}
 
     RGB L(Vector3f w) const {
         RGB L = Background(w.z);
+        if (!sun) return L;
         Float cosAngle = Dot(w, sunDirection);
         if (cosAngle >= cosSunRadius) L += sunRadiance;
         Float angle = Degrees(SafeACos(cosAngle));
@@ -146,6 +156,7 @@ class Sky {
     }
 
     Vector3f sunDirection;
+    bool sun;
     Float cosSunRadius;
     RGB sunRadiance;
 };
@@ -178,8 +189,9 @@ int main(int argc, char **argv) {
         ImageMetadata metadata;
         char generator[128];
         std::snprintf(generator, sizeof(generator),
-                      "make_sky --resolution %d --sun-elevation %g --sun-azimuth %g",
-                      options.resolution, options.sunElevation, options.sunAzimuth);
+                      "make_sky --resolution %d --sun-elevation %g --sun-azimuth %g%s",
+                      options.resolution, options.sunElevation, options.sunAzimuth,
+                      options.sun ? "" : " --no-sun");
         metadata.extra["generator"] = generator;
         image.Write(options.outFile, metadata);
     } catch (const std::exception &e) {

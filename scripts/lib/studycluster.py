@@ -42,18 +42,22 @@ def connect(scheduler=None, workers=None):
 
 class ProgressBar:
     """[#####.....] done/total what, elapsed, ETA: on one line on a terminal, a line every 10 %
-    otherwise (CI logs)."""
+    otherwise (CI logs). The bar and the ETA follow the work done, where tasks weigh what they
+    cost (a study's: their samples per pixel), not their count."""
 
-    def __init__(self, total, what, stream=sys.stderr):
+    def __init__(self, total, what, stream=sys.stderr, total_work=None):
         self.total, self.what, self.stream = total, what, stream
+        self.total_work = total_work if total_work is not None else total
         self.done = 0
+        self.work = 0
         self.start = time.monotonic()
         self.tty = stream.isatty()
         self.last_tenth = -1
         self.show()
 
-    def advance(self, n=1):
-        self.done += n
+    def advance(self, work=1):
+        self.done += 1
+        self.work += work
         self.show()
 
     def elapsed(self):
@@ -66,8 +70,10 @@ class ProgressBar:
 
     def show(self):
         elapsed = time.monotonic() - self.start
-        fraction = self.done / self.total if self.total else 1
-        eta = "?" if self.done == 0 else self._clock(elapsed / self.done * (self.total - self.done))
+        fraction = min(1, self.work / self.total_work) if self.total_work else 1
+        if self.done >= self.total:
+            fraction = 1
+        eta = "?" if self.work == 0 else self._clock(elapsed / self.work * (self.total_work - self.work))
         bar = "#" * int(30 * fraction) + "." * (30 - int(30 * fraction))
         line = (f"[{bar}] {self.done}/{self.total} {self.what}, {self._clock(elapsed)} elapsed, "
                 f"ETA {eta}")

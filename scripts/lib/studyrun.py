@@ -52,6 +52,7 @@ class StudyRun:
     def __init__(self, study, client, database, stream=sys.stderr):
         self.study, self.client, self.db, self.stream = study, client, database, stream
         self.kind = {}           # future -> ("slice", scene) | ("reference", scene, slices) | ("config", key, config)
+        self.work = {}           # future -> its samples per pixel, what the progress bar weighs
         self.references = {}     # scene name -> reference path, or the merge's future
 
     def submit_references(self):
@@ -61,9 +62,11 @@ class StudyRun:
                 self.references[scene.name] = row["path"]
                 continue
             slices, merge = _submit_reference(self.client, self.study, scene)
-            for s in slices:
+            for s, (first, last) in zip(slices, self.study.reference_slices_of()):
                 self.kind[s] = ("slice", scene)
+                self.work[s] = last - first
             self.kind[merge] = ("reference", scene, slices)
+            self.work[merge] = 0
             self.references[scene.name] = merge
 
     def submit_configurations(self):
@@ -79,6 +82,7 @@ class StudyRun:
                                         _job(self.study, scene, self.study.render_args(config)),
                                         self.references[scene.name], pure=False)
             self.kind[future] = ("config", key, config)
+            self.work[future] = config["spp"]
             todo += 1
         return todo, len(done)
 
@@ -110,13 +114,13 @@ class StudyRun:
         self.stream.write(f"study {self.study.name}: {todo} configurations to render, {done} "
                           f"stored; {sum(1 for k in self.kind.values() if k[0] == 'reference')} "
                           f"references to render\n")
-        progress = ProgressBar(len(self.kind), "tasks", self.stream)
+        progress = ProgressBar(len(self.kind), "tasks", self.stream, sum(self.work.values()))
         failed = 0
         for future in as_completed(list(self.kind)):
             self.store(future)
             if self.kind[future][0] == "config" and _outcome(future)["status"] == "failed":
                 failed += 1
-            progress.advance()
+            progress.advance(self.work[future])
         return failed
 
 
