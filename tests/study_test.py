@@ -19,7 +19,8 @@ import unittest
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "scripts", "lib"))
-import studytasks  # noqa: E402  (after the path)
+import studymodel  # noqa: E402  (after the path)
+import studytasks  # noqa: E402
 
 BINARY = os.environ.get("PBRT_EXT_CLI", os.path.join(REPO, "build", "release", "pbrt_ext", "cmd",
                                                      "pbrt_ext"))
@@ -190,6 +191,24 @@ class Study(StudyCase):
         # Not retried: a second run renders nothing more.
         again = self.run_study(path)
         self.assertIn("0 configurations to render, 16 stored", again.stderr)
+
+
+class MakespanModel(unittest.TestCase):
+    def test_list_scheduling_of_a_reference_and_its_configurations(self):
+        # Two 1 s slices, their 0.1 s merge, then four 1 s configurations that wait for it.
+        tasks = [("s0", 1, 10, []), ("s1", 1, 10, []), ("merge", 0.1, 10, ["s0", "s1"])]
+        tasks += [(f"c{i}", 1, 0, ["merge"]) for i in range(4)]
+        self.assertAlmostEqual(studymodel.predict(tasks, 1), 6.1)
+        # Both slices at once; one worker merges while the other waits; then 2 + 2 configurations.
+        self.assertAlmostEqual(studymodel.predict(tasks, 2), 3.1)
+        # More workers than configurations: the critical path, 1 + 0.1 + 1.
+        self.assertAlmostEqual(studymodel.predict(tasks, 8), 2.1)
+
+    def test_priority_puts_references_first(self):
+        # A long configuration of another scene, submitted first, waits behind the reference.
+        tasks = [("other", 5, 0, []), ("s0", 1, 10, []), ("c", 1, 0, ["s0"])]
+        self.assertAlmostEqual(studymodel.predict(tasks, 1), 7)
+        self.assertAlmostEqual(studymodel.predict(tasks, 2), 5)
 
 
 class RenderDistributed(StudyCase):

@@ -48,17 +48,24 @@ def series_of(rows, dims):
     return series
 
 
-def is_reference_like(key, dims):
-    return all(v in REFERENCE_CHOICES.get(d, (None,)) for d, v in zip(dims, key))
+def is_reference_like(study, scene, key, dims):
+    """Whether the series is rendered as the reference is (studyfile.Study.reference_args):
+    MIS, the best fabric sampler, the reference's integrator, the scene's other choices."""
+    allowed = {**REFERENCE_CHOICES, "integrator": (study.reference_integrator.get(scene), None)}
+    for choice in CHOICES:
+        value = key[dims.index(choice)] if choice in dims else study.choices[choice][0]
+        if value not in allowed.get(choice, (None,)):
+            return False
+    return True
 
 
-def fits_of(series, dims, reference_spp):
-    """{scene: {key: c}}, after the floor of the reference's noise (from the series rendered
-    like the reference, where there is one)."""
+def fits_of(study, series, dims):
+    """{scene: {key: c}}, after the floor of the reference's noise, estimated from the series
+    rendered as the reference is where the study has one (otherwise no floor)."""
     fits = {}
     for scene, by_key in series.items():
-        like = [pts for key, pts in by_key.items() if is_reference_like(key, dims)]
-        floor = reference_floor(like[0], reference_spp) if like else 0.0
+        like = [pts for key, pts in by_key.items() if is_reference_like(study, scene, key, dims)]
+        floor = reference_floor(like[0], study.reference_spp) if like else 0.0
         fits[scene] = {key: fit_c(points, floor) for key, points in by_key.items()}
     return fits
 
@@ -147,10 +154,17 @@ def plot(series, dims, fits, study, out):
     cols = min(2, len(scenes))
     rows = (len(scenes) + cols - 1) // cols
     fig, axes = plt.subplots(rows, cols, figsize=(6 * cols, 4.5 * rows), squeeze=False)
+    # A colour per value of the last choice that varies, a line style per value of the first.
+    keys = sorted({k for by_key in series.values() for k in by_key}, key=str)
+    colours = {v: f"C{i % 10}" for i, v in enumerate(dict.fromkeys(k[-1] for k in keys if k))}
+    firsts = list(dict.fromkeys(k[0] for k in keys if len(k) > 1))
+    styles = dict(zip(firsts, ["-", "--", ":", "-."] * 4))
+    hatches = dict(zip(firsts, ["", "//", "..", "xx"] * 4))
     for ax, scene in zip(axes.flat, scenes):
         for key, pts in sorted(series[scene].items(), key=lambda kv: str(kv[0])):
             ax.loglog([p[1] for p in pts], [p[2] for p in pts], marker="o", markersize=3,
-                      label=label(key))
+                      label=label(key), color=colours.get(key[-1] if key else None),
+                      linestyle=styles.get(key[0], "-") if len(key) > 1 else "-")
         ax.set(title=scene, xlabel="render time [s]", ylabel="relMSE (mean over seeds)")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
@@ -161,7 +175,6 @@ def plot(series, dims, fits, study, out):
     plt.close(fig)
 
     fig, ax = plt.subplots(figsize=(max(6, 1.5 * len(scenes) + 3), 4.5))
-    keys = sorted({k for by_key in series.values() for k in by_key}, key=str)
     width = 0.8 / max(1, len(keys))
     for i, key in enumerate(keys):
         ratios = []
@@ -171,14 +184,15 @@ def plot(series, dims, fits, study, out):
             eff = lambda k: 1 / (c_of[k] * seconds_per_spp(by_key[k]))  # noqa: E731
             ratios.append(eff(key) / eff(base) if key in by_key else float("nan"))
         ax.bar([j + (i - (len(keys) - 1) / 2) * width for j in range(len(scenes))], ratios, width,
-               label=label(key))
+               label=label(key), color=colours.get(key[-1] if key else None),
+               hatch=hatches.get(key[0], "") if len(key) > 1 else "", edgecolor="white")
     ax.axhline(1, color="black", linewidth=0.8)
     ax.set_yscale("log")
     ax.set_xticks(range(len(scenes)), scenes, rotation=15)
     ax.set_ylabel("efficiency / baseline's")
-    ax.legend(fontsize=7, ncol=2)
+    ax.legend(fontsize=7, ncol=min(4, len(keys)), loc="upper center", bbox_to_anchor=(0.5, -0.18))
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "efficiency.png"), dpi=110)
+    fig.savefig(os.path.join(out, "efficiency.png"), dpi=110, bbox_inches="tight")
     plt.close(fig)
 
 
@@ -193,9 +207,9 @@ def report(study, out):
     dims = varying(study)
     ok = [r for r in rows if r["status"] == "ok"]
     series = series_of(ok, dims)
-    fits = fits_of(series, dims, study.reference_spp)
+    fits = fits_of(study, series, dims)
     lines = [f"# Study {study.name}", "",
-             f"{len(rows)} results ({len(ok)} ok) from {study.database}; references at "
+             f"{len(rows)} results ({len(ok)} ok) from {os.path.relpath(study.database)}; references at "
              f"{study.reference_spp} spp, seed {study.reference_seed} "
              f"({sum(r['seconds'] or 0 for r in references):.1f} s of rendering). relMSE is the "
              f"mean over seeds {study.seeds}; efficiency is 1 / (relMSE x seconds).", ""]
