@@ -59,7 +59,7 @@ const std::string &Attribute(const EXRChannels &exr, const std::string &path, co
     return it->second;
 }
 
-// Integers from text, exactly count of them, separated by spaces or one ':' (a sample range).
+// Exactly count numbers from text, separated by spaces or a ':' (a sample range).
 std::vector<double> Numbers(const std::string &text, size_t count, const std::string &path,
                             const std::string &key) {
     std::string spaced = text;

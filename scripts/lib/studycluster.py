@@ -40,6 +40,16 @@ def connect(scheduler=None, workers=None):
             cluster.close()
 
 
+def outcome_of(future):
+    """The task's result, or, where it raised (its worker died three times, or the task itself
+    failed), a failure record with the exception's message."""
+    try:
+        return future.result()
+    except Exception as e:  # noqa: BLE001: every failure is an outcome to report
+        return {"status": "failed", "message": f"{type(e).__name__}: {e}", "wall_seconds": None,
+                "seconds": None, "relmse": None, "worker": None, "binary_version": None}
+
+
 class ProgressBar:
     """[#####.....] done/total what, elapsed, ETA: on one line on a terminal, a line every 10 %
     otherwise (CI logs). The bar and the ETA follow the work done, where tasks weigh what they

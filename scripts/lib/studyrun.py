@@ -11,7 +11,7 @@ import os
 import sys
 
 import studytasks
-from studycluster import ProgressBar
+from studycluster import ProgressBar, outcome_of
 from studydb import Database
 
 
@@ -32,20 +32,6 @@ def _submit_reference(client, study, scene):
     merge = client.submit(studytasks.merge_slices, study.binary, study.reference_path(scene),
                           slices, files, study.timeout, pure=False, priority=10)
     return slices, merge
-
-
-def _failure(exception):
-    """A task that raised (its worker died three times, or the task itself failed)."""
-    return {"status": "failed", "message": f"{type(exception).__name__}: {exception}",
-            "wall_seconds": None, "seconds": None, "relmse": None, "worker": None,
-            "binary_version": None}
-
-
-def _outcome(future):
-    try:
-        return future.result()
-    except Exception as e:  # noqa: BLE001: every failure is a result to store
-        return _failure(e)
 
 
 class StudyRun:
@@ -87,8 +73,9 @@ class StudyRun:
         return todo, len(done)
 
     def store(self, future):
+        """Stores the task's outcome where it is a configuration or a reference; returns it."""
         kind = self.kind[future]
-        outcome = _outcome(future)
+        outcome = outcome_of(future)
         if kind[0] == "config":
             _, key, config = kind
             scene = next(s for s in self.study.scenes if s.name == config["scene"])
@@ -96,7 +83,7 @@ class StudyRun:
         elif kind[0] == "reference":
             _, scene, slices = kind
             if isinstance(outcome, str):
-                records = [_outcome(s) for s in slices]
+                records = [outcome_of(s) for s in slices]
                 self.db.add_reference({
                     "scene": scene.name, "path": outcome, "spp": self.study.reference_spp,
                     "seed": self.study.reference_seed, "slices": len(slices),
@@ -105,6 +92,7 @@ class StudyRun:
                     "binary_version": records[0].get("binary_version"), "scene_hash": scene.hash})
             else:
                 self.stream.write(f"\nreference of {scene.name} failed: {outcome['message']}\n")
+        return outcome
 
     def run(self):
         """Renders what is missing; returns the number of failed configurations stored."""
@@ -117,8 +105,8 @@ class StudyRun:
         progress = ProgressBar(len(self.kind), "tasks", self.stream, sum(self.work.values()))
         failed = 0
         for future in as_completed(list(self.kind)):
-            self.store(future)
-            if self.kind[future][0] == "config" and _outcome(future)["status"] == "failed":
+            outcome = self.store(future)
+            if self.kind[future][0] == "config" and outcome["status"] == "failed":
                 failed += 1
             progress.advance(self.work[future])
         return failed
