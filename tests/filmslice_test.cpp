@@ -1,6 +1,6 @@
 // Film slices (issue 21): renders of disjoint sample ranges, written, read back and merged, equal
-// one render of all the samples to float rounding, for box and Gaussian filters, two samplers
-// and an integrator that splats; slices of different renders, overlapping slices and slices
+// one render of all the samples to float rounding, for every filter and sampler and for the
+// integrators that splat; slices of different renders, overlapping slices and slices
 // with a gap between them are refused.
 #include "pbrt_ext/filmslice.h"
 #include "pbrt_ext/render.h"
@@ -124,7 +124,11 @@ INSTANTIATE_TEST_SUITE_P(
     FiltersSamplersIntegrators, FilmSliceMerge,
     testing::Values(MergeCase{"box", "independent", "path"}, MergeCase{"gaussian", "independent", "path"},
                     MergeCase{"box", "zsobol", "path"}, MergeCase{"gaussian", "zsobol", "path"},
-                    MergeCase{"gaussian", "zsobol", "bdpt"}),
+                    MergeCase{"gaussian", "zsobol", "bdpt"},
+                    // The other filters (Mitchell's and Lanczos's weights go negative) and samplers.
+                    MergeCase{"mitchell", "stratified", "path"}, MergeCase{"lanczos", "halton", "path"},
+                    MergeCase{"triangle", "sobol", "path"}, MergeCase{"box", "paddedsobol", "lightpath"},
+                    MergeCase{"gaussian", "pmj02bn", "path"}),
     [](const testing::TestParamInfo<MergeCase> &param) {
         return std::string(param.param.filter) + "_" + param.param.sampler + "_" + param.param.integrator;
     });
