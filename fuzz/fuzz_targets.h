@@ -37,6 +37,8 @@ void FuzzFabric(std::span<const uint8_t> data);
 void FuzzScene(std::span<const uint8_t> data);
 // A NanoVDB file that a scene's "nanovdb" medium reads (through LoadScene).
 void FuzzNanoVDB(std::span<const uint8_t> data);
+// A film slice's EXR (FilmSlice::Read), merged with itself moved past its own samples.
+void FuzzSlice(std::span<const uint8_t> data);
 
 struct FuzzTarget {
     std::string_view name;  // as scripts/fuzz and tests/data/fuzz/<name>/ call it
@@ -47,6 +49,6 @@ struct FuzzTarget {
 inline constexpr FuzzTarget kFuzzTargets[] = {
     {"parser", FuzzParser}, {"ply", FuzzPly},     {"image", FuzzImage}, {"pngexr", FuzzPngExr},
     {"stb", FuzzStb},       {"fabric", FuzzFabric}, {"scene", FuzzScene},
-    {"nanovdb", FuzzNanoVDB}};
+    {"nanovdb", FuzzNanoVDB}, {"slice", FuzzSlice}};
 
 }  // namespace pbrt::fuzz

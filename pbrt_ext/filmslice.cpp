@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -22,6 +23,8 @@ namespace {
 constexpr const char *kSumChannels[4] = {"sums.R", "sums.G", "sums.B", "sums.weight"};
 constexpr const char *kSplatChannels[3] = {"splats.R", "splats.G", "splats.B"};
 constexpr const char *kAttributePrefix = "pbrt_ext.";
+// What a film can be (create_options.cpp: pixel coordinates are floats) and a sampler can take.
+constexpr int kMaxResolution = 1 << 24, kMaxSampleIndex = 1 << 30;
 
 std::string MatrixString(const SquareMatrix<3> &m) {
     std::string s;
@@ -59,7 +62,7 @@ const std::string &Attribute(const EXRChannels &exr, const std::string &path, co
     return it->second;
 }
 
-// Exactly count numbers from text, separated by spaces or a ':' (a sample range).
+// Exactly count finite numbers from text, separated by spaces or a ':' (a sample range).
 std::vector<double> Numbers(const std::string &text, size_t count, const std::string &path,
                             const std::string &key) {
     std::string spaced = text;
@@ -68,10 +71,25 @@ std::vector<double> Numbers(const std::string &text, size_t count, const std::st
     std::vector<double> values;
     double v;
     while (in >> v) values.push_back(v);
-    if (values.size() != count || !in.eof())
+    bool finite = std::all_of(values.begin(), values.end(), [](double x) { return std::isfinite(x); });
+    if (values.size() != count || !in.eof() || !finite)
         ThrowFileError(path, fmt::format("attribute \"{}{}\" is \"{}\": expected {} numbers",
                                          kAttributePrefix, key, text, count));
     return values;
+}
+
+// Exactly count integers in [0, max] (pixel coordinates, sample indices).
+std::vector<int> Integers(const std::string &text, size_t count, int max, const std::string &path,
+                          const std::string &key) {
+    std::vector<int> integers;
+    for (double v : Numbers(text, count, path, key)) {
+        if (v != std::floor(v) || v < 0 || v > max)
+            ThrowFileError(path, fmt::format("attribute \"{}{}\" is \"{}\": expected integers "
+                                             "from 0 to {}",
+                                             kAttributePrefix, key, text, max));
+        integers.push_back(int(v));
+    }
+    return integers;
 }
 
 // One channel's values into every stride-th element of out, from offset.
@@ -192,15 +210,18 @@ void FilmSlice::Write(const std::string &path) const {
 FilmSlice FilmSlice::Read(const std::string &path) {
     const EXRChannels exr = ReadEXRChannels(path);
     FilmSlice slice;
-    std::vector<double> r = Numbers(Attribute(exr, path, "samples"), 2, path, "samples");
-    slice.samples = {int(r[0]), int(r[1])};
-    if (slice.samples.first < 0 || slice.samples.Count() <= 0)
+    std::vector<int> r = Integers(Attribute(exr, path, "samples"), 2, kMaxSampleIndex, path, "samples");
+    slice.samples = {r[0], r[1]};
+    if (slice.samples.Count() <= 0)
         ThrowFileError(path, "the sample range " + RangeString(slice.samples) + " is empty");
     slice.seconds = Numbers(Attribute(exr, path, "seconds"), 1, path, "seconds")[0];
-    std::vector<double> f = Numbers(Attribute(exr, path, "fullResolution"), 2, path, "fullResolution");
-    slice.fullResolution = Point2i(int(f[0]), int(f[1]));
-    std::vector<double> b = Numbers(Attribute(exr, path, "pixelBounds"), 4, path, "pixelBounds");
-    slice.pixelBounds = Bounds2i(Point2i(int(b[0]), int(b[1])), Point2i(int(b[2]), int(b[3])));
+    std::vector<int> f = Integers(Attribute(exr, path, "fullResolution"), 2, kMaxResolution, path,
+                                  "fullResolution");
+    slice.fullResolution = Point2i(f[0], f[1]);
+    std::vector<int> b = Integers(Attribute(exr, path, "pixelBounds"), 4, kMaxResolution, path, "pixelBounds");
+    slice.pixelBounds = Bounds2i(Point2i(b[0], b[1]), Point2i(b[2], b[3]));
+    if (Intersect(slice.pixelBounds, Bounds2i(Point2i(0, 0), slice.fullResolution)) != slice.pixelBounds)
+        ThrowFileError(path, "the pixelBounds attribute is not inside the fullResolution");
     Vector2i size = slice.pixelBounds.Diagonal();
     if (Point2i(size.x, size.y) != exr.resolution)
         ThrowFileError(path, "the pixelBounds attribute does not match the image's size");

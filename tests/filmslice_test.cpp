@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -183,6 +184,29 @@ TEST(FilmSliceFile, AnImageWithoutSumsIsNoSlice) {
     } catch (const std::runtime_error &e) {
         EXPECT_NE(std::string(e.what()).find(path + ": error: not a film slice"), std::string::npos) << e.what();
     }
+}
+
+// The message of reading the slice back after Write; empty when it reads.
+std::string ReadError(const FilmSlice &slice) {
+    std::string path = (TempDir() / "tampered.exr").string();
+    slice.Write(path);
+    try {
+        FilmSlice::Read(path);
+    } catch (const std::runtime_error &e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(FilmSliceFile, AttributesOutOfRangeAreRefused) {
+    FilmSlice slice = RenderSamples(SceneText("box", "independent", 4), SampleRange{0, 2}).slice;
+    ASSERT_EQ(ReadError(slice), "");
+    FilmSlice huge = slice;
+    huge.samples = {0, std::numeric_limits<int>::max()};
+    EXPECT_NE(ReadError(huge).find("expected integers from 0 to 1073741824"), std::string::npos);
+    FilmSlice outside = slice;
+    outside.fullResolution = Point2i(10, 10);
+    EXPECT_NE(ReadError(outside).find("not inside the fullResolution"), std::string::npos);
 }
 
 TEST(FilmSliceRender, RefusesRangesOutsideTheSamplerAndSPPM) {
