@@ -1,5 +1,5 @@
 // The slice target: a film slice's EXR (filmslice.h) read by FilmSlice::Read, then merged with a
-// copy of itself moved past its own samples, as `pbrt_ext merge` does. OpenEXR decodes the file;
+// copy of itself moved past its own samples, as `pbrt_ext merge` does (FilmSliceMerger). OpenEXR decodes the file;
 // the target steers by what FilmSlice makes of its attributes and channels. The EXR signature is
 // restored, so that every input reaches OpenEXR rather than being refused by its first bytes.
 #include "fuzz/finding.h"
@@ -23,12 +23,15 @@ void FuzzSlice(std::span<const uint8_t> data) {
     std::copy(std::begin(kExrSignature), std::end(kExrSignature), file.begin());
     std::string path = WriteScratchFile("slice", "input.exr", file);
     ExpectReadOrRejection("slice", [&] {
-        FilmSlice slice = FilmSlice::Read(path);
-        FilmSlice next = slice;
-        next.samples = {slice.samples.last, slice.samples.last + slice.samples.Count()};
-        FilmSlice merged = MergeFilmSlices({slice, next}, {path, path});
-        if (merged.samples.first != slice.samples.first || merged.samples.last != next.samples.last ||
-            merged.sums.size() != slice.sums.size())
+        FilmSlice next = FilmSlice::Read(path);
+        const SampleRange first = next.samples;
+        const size_t sums = next.sums.size();
+        FilmSliceMerger merger;  // two slices in memory, as the reader's budget counts
+        merger.Add(next, path);
+        next.samples = {first.last, first.last + first.Count()};
+        merger.Add(std::move(next), path);
+        FilmSlice merged = std::move(merger).Result();
+        if (merged.samples != SampleRange{first.first, first.last + first.Count()} || merged.sums.size() != sums)
             ReportFinding("slice", "the merge of two adjoining slices is not their union");
         merged.GetImage();
     });

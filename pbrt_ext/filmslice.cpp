@@ -208,7 +208,7 @@ void FilmSlice::Write(const std::string &path) const {
 }
 
 FilmSlice FilmSlice::Read(const std::string &path) {
-    const EXRChannels exr = ReadEXRChannels(path);
+    const EXRChannels exr = ReadEXRChannels(path, kSliceBytesPerPixel);
     FilmSlice slice;
     std::vector<int> r = Integers(Attribute(exr, path, "samples"), 2, kMaxSampleIndex, path, "samples");
     slice.samples = {r[0], r[1]};
@@ -243,35 +243,49 @@ FilmSlice FilmSlice::Read(const std::string &path) {
     return slice;
 }
 
-FilmSlice MergeFilmSlices(const std::vector<FilmSlice> &slices, const std::vector<std::string> &names) {
-    if (slices.empty() || names.size() != slices.size())
-        throw std::invalid_argument("MergeFilmSlices: one name per slice, and at least one slice");
+void FilmSliceMerger::Add(FilmSlice slice, std::string name) {
+    ranges.emplace_back(slice.samples, name);
+    if (!merged) {
+        merged = std::move(slice);
+        return;
+    }
+    CheckSameRender(*merged, ranges.front().second, slice, name);
+    for (size_t i = 0; i < merged->sums.size(); ++i) merged->sums[i] += slice.sums[i];
+    for (size_t i = 0; i < merged->splats.size(); ++i) merged->splats[i] += slice.splats[i];
+    merged->seconds += slice.seconds;
+}
+
+FilmSlice FilmSliceMerger::Result() && {
+    if (!merged)
+        throw std::invalid_argument("FilmSliceMerger: no slice to merge");
     // In sample order, to find overlaps and gaps between neighbours.
-    std::vector<size_t> order(slices.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(),
-              [&](size_t a, size_t b) { return slices[a].samples.first < slices[b].samples.first; });
-    FilmSlice merged = slices[order[0]];
-    for (size_t k = 1; k < order.size(); ++k) {
-        const FilmSlice &prev = slices[order[k - 1]], &next = slices[order[k]];
-        const std::string &prevName = names[order[k - 1]], &nextName = names[order[k]];
-        CheckSameRender(slices[order[0]], names[order[0]], next, nextName);
-        if (next.samples.first < prev.samples.last)
+    std::sort(ranges.begin(), ranges.end(),
+              [](const auto &a, const auto &b) { return a.first.first < b.first.first; });
+    for (size_t k = 1; k < ranges.size(); ++k) {
+        const auto &[prev, prevName] = ranges[k - 1];
+        const auto &[next, nextName] = ranges[k];
+        if (next.first < prev.last)
             throw std::runtime_error(fmt::format(
                 "merge: error: {} (samples {}) and {} (samples {}) overlap: each sample must be "
                 "merged once",
-                prevName, RangeString(prev.samples), nextName, RangeString(next.samples)));
-        if (next.samples.first > prev.samples.last)
+                prevName, RangeString(prev), nextName, RangeString(next)));
+        if (next.first > prev.last)
             throw std::runtime_error(fmt::format(
                 "merge: error: samples {}:{} are missing between {} and {}: the merge would be no "
                 "single render's",
-                prev.samples.last, next.samples.first, prevName, nextName));
-        for (size_t i = 0; i < merged.sums.size(); ++i) merged.sums[i] += next.sums[i];
-        for (size_t i = 0; i < merged.splats.size(); ++i) merged.splats[i] += next.splats[i];
-        merged.samples.last = next.samples.last;
-        merged.seconds += next.seconds;
+                prev.last, next.first, prevName, nextName));
     }
-    return merged;
+    FilmSlice result = std::move(*merged);
+    result.samples = {ranges.front().first.first, ranges.back().first.last};
+    return result;
+}
+
+FilmSlice MergeFilmSlices(const std::vector<FilmSlice> &slices, const std::vector<std::string> &names) {
+    if (names.size() != slices.size())
+        throw std::invalid_argument("MergeFilmSlices: one name per slice");
+    FilmSliceMerger merger;
+    for (size_t i = 0; i < slices.size(); ++i) merger.Add(slices[i], names[i]);
+    return std::move(merger).Result();
 }
 
 }  // namespace pbrt

@@ -19,6 +19,8 @@
 #include "pbrt_ext/render.h"
 #include "pbrt_ext/util/image.h"
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -58,9 +60,26 @@ struct FilmSlice {
     static FilmSlice Read(const std::string &path);
 };
 
-// The slice of the union of the slices' samples. Throws std::runtime_error, naming the files
-// (names[i] is slices[i]'s), when the slices differ in identity or pixels, when their sample
-// ranges overlap, or when they leave a gap (the result would be no single render's).
+// Adds slices one at a time, so that a merge holds two slices in memory however many there are:
+// the sum so far and the one being added. Add throws std::runtime_error, naming both files, for
+// a slice of another render (identity or splats); Result, once every range is known, for ranges
+// that overlap or leave a gap (the result would be no single render's).
+class FilmSliceMerger {
+  public:
+    void Add(FilmSlice slice, std::string name);
+    // The slice of the union of the samples added; throws std::invalid_argument if none were.
+    FilmSlice Result() &&;
+
+  private:
+    std::optional<FilmSlice> merged;  // the sum so far
+    std::vector<std::pair<SampleRange, std::string>> ranges;  // each slice's, with its name, in order added
+};
+
+// The same for slices at hand (names[i] is slices[i]'s file).
 FilmSlice MergeFilmSlices(const std::vector<FilmSlice> &slices, const std::vector<std::string> &names);
+
+// What reading a slice and merging it keep per pixel, besides the file's floats: the slice's
+// sums and the merge's (7 doubles each).
+constexpr uint64_t kSliceBytesPerPixel = 2 * 7 * sizeof(double);
 
 }  // namespace pbrt

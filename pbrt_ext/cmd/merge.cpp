@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pbrt {
@@ -29,13 +30,14 @@ int MergeMain(int argc, char **argv) {
         return app.exit(e);
     }
     try {
-        std::vector<FilmSlice> slices;
-        for (const std::string &path : inputs) slices.push_back(FilmSlice::Read(path));
-        FilmSlice merged = MergeFilmSlices(slices, inputs);
+        // One slice in memory at a time besides the sum, however many there are.
+        FilmSliceMerger merger;
+        for (const std::string &path : inputs) merger.Add(FilmSlice::Read(path), path);
+        FilmSlice merged = std::move(merger).Result();
         merged.Write(out);
         if (!quiet)
             std::fprintf(stderr, "pbrt_ext merge: samples %d:%d of %zu slices written to %s\n",
-                         merged.samples.first, merged.samples.last, slices.size(), out.c_str());
+                         merged.samples.first, merged.samples.last, inputs.size(), out.c_str());
     } catch (const std::exception &e) {
         std::fprintf(stderr, "%s\n", e.what());
         return 1;

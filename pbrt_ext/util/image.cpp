@@ -145,13 +145,15 @@ std::string ColorEncoding::ToString() const {
 namespace {
 
 // Every channel of every pixel of the file as float, after the checks that keep a corrupt or
-// hostile header from allocating what it declares.
+// hostile header from allocating what it declares. The caller keeps, besides the file's floats,
+// keptBytesPerChannel per channel and keptBytesPerPixel per pixel (the image's own RGB, or
+// ReadEXRChannels' copies and its caller's share).
 struct RawImage {
     ImageFileSpec spec;
     std::vector<float> pixels;  // spec.nChannels per pixel, row-major
 };
 
-RawImage ReadRawImage(const std::string &path) {
+RawImage ReadRawImage(const std::string &path, uint64_t keptBytesPerChannel, uint64_t keptBytesPerPixel) {
     CheckDeclaredSizes(path);  // before a decoder allocates what a corrupt header declares
     std::unique_ptr<ImageFileReader> in;
     try {
@@ -167,12 +169,13 @@ RawImage ReadRawImage(const std::string &path) {
         ThrowFileError(path, fmt::format("the image is a volume of {} slices; expected a 2D image",
                                          spec.depth));
     // The header alone decides the size: the file's channels as floats while decoding, then
-    // the image's own three.
+    // what the caller keeps.
+    const uint64_t bytesPerPixel =
+        uint64_t(spec.nChannels) * (sizeof(float) + keptBytesPerChannel) + keptBytesPerPixel;
     CheckMemory(FileLoc{path, 0, 0},
                 fmt::format("the {} x {} image of {} channel{}", spec.width, spec.height,
                             spec.nChannels, spec.nChannels == 1 ? "" : "s"),
-                SaturatingProduct({uint64_t(spec.width), uint64_t(spec.height),
-                                   uint64_t(spec.nChannels) + Image::NChannels(), sizeof(float)}));
+                SaturatingProduct({uint64_t(spec.width), uint64_t(spec.height), bytesPerPixel}));
     CheckMemory(FileLoc{path, 0, 0},
                 fmt::format("decoding the {} x {} image", spec.width, spec.height),
                 spec.decodeBufferBytes);
@@ -188,10 +191,11 @@ RawImage ReadRawImage(const std::string &path) {
 
 }  // namespace
 
-EXRChannels ReadEXRChannels(const std::string &path) {
+EXRChannels ReadEXRChannels(const std::string &path, uint64_t keptBytesPerPixel) {
     if (ImageFileFormatOf(path) != ImageFileFormat::EXR)
         ThrowFileError(path, "not an OpenEXR file");
-    RawImage raw = ReadRawImage(path);
+    // Its channels are copied out of the file's interleaved floats, one by one.
+    RawImage raw = ReadRawImage(path, sizeof(float), keptBytesPerPixel);
     const ImageFileSpec &spec = raw.spec;
     EXRChannels contents{Point2i(spec.width, spec.height), {}, spec.stringAttributes};
     const size_t nPixels = size_t(spec.width) * size_t(spec.height), stride = size_t(spec.nChannels);
@@ -204,7 +208,7 @@ EXRChannels ReadEXRChannels(const std::string &path) {
 }
 
 Image Image::Read(const std::string &path, ColorEncoding encoding, ImageChannels channels) {
-    const RawImage rawImage = ReadRawImage(path);
+    const RawImage rawImage = ReadRawImage(path, 0, Image::NChannels() * sizeof(float));
     const ImageFileSpec &spec = rawImage.spec;
     const std::vector<float> &raw = rawImage.pixels;
 

@@ -168,8 +168,10 @@ struct EXRChannels {
     std::map<std::string, std::vector<float>> channels;  // one value per pixel, row-major
     std::map<std::string, std::string> stringAttributes;
 };
-// Throws std::runtime_error("<path>: error: <what>"), also for a file that is not OpenEXR.
-EXRChannels ReadEXRChannels(const std::string &path);
+// keptBytesPerPixel: what the caller will make of each pixel, checked with the read against the
+// memory budget (util/resourcelimits.h). Throws std::runtime_error("<path>: error: <what>"), also
+// for a file that is not OpenEXR, or too large for the budget.
+EXRChannels ReadEXRChannels(const std::string &path, uint64_t keptBytesPerPixel = 0);
 
 class Image {
   public:
