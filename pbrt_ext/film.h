@@ -86,29 +86,23 @@ class RGBFilm {
     void AddSplat(Point2f pFilm, const SampledSpectrum &L, const SampledWavelengths &lambda);
     void SetSplatScale(Float scale) { splatScale = scale; }
 
-    // The weighted average in the output colour space, plus the scaled splats; black where
-    // nothing landed.
-    RGB GetPixelRGB(Point2i p) const {
-        const size_t index = PixelIndex(p);
-        const Pixel &pixel = pixels[index];
-        RGB sensorRGB(0, 0, 0);
-        if (pixel.weightSum != 0)
-            sensorRGB = RGB(Float(pixel.rgbSum[0] / pixel.weightSum), Float(pixel.rgbSum[1] / pixel.weightSum),
-                            Float(pixel.rgbSum[2] / pixel.weightSum));
-        if (!splats.empty())
-            for (int c = 0; c < 3; ++c)
-                sensorRGB[c] += Float(splatScale * splats[3 * index + c].Load());
-        return Mul<RGB>(outputRGBFromSensorRGB, sensorRGB);
-    }
-
-    // What a pixel has gathered, before GetPixelRGB divides and scales it: the filter-weighted
-    // sum of the sensor's RGB, the weight sum, and the unscaled splat sums. Samples add to
-    // these, so the sums of renders of disjoint sample ranges add up to the sums of one render
-    // of them all (filmslice.h).
+    // What a pixel has gathered: the filter-weighted sum of the sensor's RGB, the weight sum,
+    // and the unscaled splat sums. Samples add to these, so the sums of renders of disjoint
+    // sample ranges add up to the sums of one render of them all (filmslice.h).
     struct PixelSums {
         double rgb[3] = {0, 0, 0};
         double weight = 0;
         double splat[3] = {0, 0, 0};
+
+        // The pixel's value, for the film and for a slice alike: the weighted average (black
+        // where nothing landed) plus the splats times splatScale, in the output colour space.
+        RGB ToOutputRGB(double splatScale, const SquareMatrix<3> &outputRGBFromSensorRGB) const {
+            RGB sensorRGB(0, 0, 0);
+            if (weight != 0)
+                sensorRGB = RGB(Float(rgb[0] / weight), Float(rgb[1] / weight), Float(rgb[2] / weight));
+            for (int c = 0; c < 3; ++c) sensorRGB[c] += Float(splatScale * splat[c]);
+            return Mul<RGB>(outputRGBFromSensorRGB, sensorRGB);
+        }
     };
     PixelSums GetPixelSums(Point2i p) const {
         const size_t index = PixelIndex(p);
@@ -120,6 +114,10 @@ class RGBFilm {
         sums.weight = pixels[index].weightSum;
         return sums;
     }
+
+    // The weighted average in the output colour space, plus the scaled splats; black where
+    // nothing landed.
+    RGB GetPixelRGB(Point2i p) const { return GetPixelSums(p).ToOutputRGB(splatScale, outputRGBFromSensorRGB); }
 
     // The pixels of pixelBounds; its (0, 0) is pixelBounds.pMin.
     Image GetImage() const;

@@ -2,23 +2,19 @@
 
 #include "pbrt_ext/scene.h"
 #include "pbrt_ext/util/colorspace.h"
+#include "pbrt_ext/util/error.h"
 #include "pbrt_ext/util/hash.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
 namespace pbrt {
 
 namespace {
-
-[[noreturn]] void ThrowFileError(const std::string &path, const std::string &what) {
-    throw std::runtime_error(path + ": error: " + what);
-}
 
 constexpr const char *kSumChannels[4] = {"sums.R", "sums.G", "sums.B", "sums.weight"};
 constexpr const char *kSplatChannels[3] = {"splats.R", "splats.G", "splats.B"};
@@ -165,17 +161,18 @@ FilmSlice FilmSlice::FromFilm(const RGBFilm &film, SampleRange samples, double s
 Image FilmSlice::GetImage() const {
     const Vector2i size = pixelBounds.Diagonal();
     Image image(Point2i(size.x, size.y));
-    // As RGBFilm::GetPixelRGB, with its splat scale: one over the samples per pixel.
+    // The film's splat scale: one over the samples per pixel (render.cpp).
     const Float splatScale = Float(1.0 / samples.Count());
     for (int y = 0; y < size.y; ++y)
         for (int x = 0; x < size.x; ++x) {
             const size_t i = size_t(y) * size_t(size.x) + size_t(x);
-            const double *s = &sums[4 * i];
-            RGB sensorRGB(0, 0, 0);
-            if (s[3] != 0) sensorRGB = RGB(Float(s[0] / s[3]), Float(s[1] / s[3]), Float(s[2] / s[3]));
-            if (!splats.empty())
-                for (int c = 0; c < 3; ++c) sensorRGB[c] += Float(splatScale * splats[3 * i + c]);
-            RGB rgb = Mul<RGB>(outputRGBFromSensorRGB, sensorRGB);
+            RGBFilm::PixelSums pixel;
+            for (int c = 0; c < 3; ++c) {
+                pixel.rgb[c] = sums[4 * i + c];
+                if (!splats.empty()) pixel.splat[c] = splats[3 * i + c];
+            }
+            pixel.weight = sums[4 * i + 3];
+            RGB rgb = pixel.ToOutputRGB(splatScale, outputRGBFromSensorRGB);
             for (int c = 0; c < 3; ++c) image.SetChannel(Point2i(x, y), c, rgb[c]);
         }
     return image;

@@ -29,7 +29,7 @@ import sys
 import matplotlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
-from convergencefit import fit_c, reference_floor, seconds_per_spp  # noqa: E402
+from convergencefit import efficiency, fit_c, reference_floor  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend choice)
@@ -69,7 +69,7 @@ def fit(series, reference_spp):
         fits[scene] = {}
         for key, points in by_key.items():
             c = fit_c(points, floor)
-            fits[scene][key] = (c, 1 / (c * seconds_per_spp(points)))
+            fits[scene][key] = (c, efficiency(c, points))
     return fits
 
 

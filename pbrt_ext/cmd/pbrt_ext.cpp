@@ -11,6 +11,7 @@
 #include "pbrt_ext/options.h"
 #include "pbrt_ext/render.h"
 #include "pbrt_ext/sceneloader.h"
+#include "pbrt_ext/util/image.h"
 #include "pbrt_ext/util/log.h"
 
 #include <CLI/CLI.hpp>
@@ -130,11 +131,6 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
     return -1;
 }
 
-bool IsEXRPath(const std::string &path) {
-    return path.size() >= 4 && (path.compare(path.size() - 4, 4, ".exr") == 0 ||
-                                path.compare(path.size() - 4, 4, ".EXR") == 0);
-}
-
 std::string FileContents(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
     std::ostringstream text;
@@ -145,12 +141,11 @@ std::string FileContents(const std::string &path) {
 // The film's image; for --samples, a slice of the samples every pixel took (none when Ctrl-C
 // left pixels with different counts: then the plain image, which no merge takes).
 void WriteRender(const Scene &scene, const CommandLine &cmd, std::optional<SampleRange> samples,
-                 const RenderStatistics &stats) {
+                 const SliceIdentity &identity, const RenderStatistics &stats) {
     if (samples && stats.samplesPerPixel == stats.maxSamplesPerPixel) {
         const int first = samples->first;
         FilmSlice::FromFilm(scene.film, {first, first + stats.samplesPerPixel}, stats.seconds,
-                            MakeSliceIdentity(scene, FileContents(cmd.sceneFile), cmd.overrides),
-                            cmd.sceneFile)
+                            identity, cmd.sceneFile)
             .Write(scene.film.GetFilename());
         return;
     }
@@ -167,7 +162,7 @@ void WriteRender(const Scene &scene, const CommandLine &cmd, std::optional<Sampl
 // was rendered, with kInterruptedExitStatus.
 int RenderAndWriteImage(Scene &scene, const CommandLine &cmd) {
     const RenderOverrides &o = cmd.overrides;
-    if (!cmd.samples.empty() && !IsEXRPath(scene.film.GetFilename())) {
+    if (!cmd.samples.empty() && !IsEXRFilename(scene.film.GetFilename())) {
         std::fprintf(stderr, "pbrt_ext: error: --samples: the slice's sums need an EXR file, not \"%s\"\n",
                      scene.film.GetFilename().c_str());
         return 2;
@@ -185,6 +180,10 @@ int RenderAndWriteImage(Scene &scene, const CommandLine &cmd) {
         std::fprintf(stderr, "pbrt_ext: error: --samples: %s\n", e.what());
         return 2;
     }
+    // The scene file's text as it was loaded, before a render that may take hours.
+    SliceIdentity identity;
+    if (options.samples)
+        identity = MakeSliceIdentity(scene, FileContents(cmd.sceneFile), o);
     BeginInterruptibleRender();
     if (!o.quiet) {
         Vector2i size = scene.film.PixelBounds().Diagonal();
@@ -195,7 +194,7 @@ int RenderAndWriteImage(Scene &scene, const CommandLine &cmd) {
     }
     RenderStatistics stats = Render(scene, options);
     EndInterruptibleRender();
-    WriteRender(scene, cmd, options.samples, stats);
+    WriteRender(scene, cmd, options.samples, identity, stats);
     if (o.stats)
         std::printf("%s", stats.ToString().c_str());
     if (!stats.cancelled)

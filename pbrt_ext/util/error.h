@@ -42,6 +42,12 @@ class ParseError : public std::runtime_error {
     FileLoc loc;
 };
 
+// A problem with a whole file (an image, a film slice), where no line means anything: a
+// std::runtime_error "<path>: error: <what>", which the command line prints as it is.
+[[noreturn]] inline void ThrowFileError(const std::string &path, const std::string &what) {
+    throw std::runtime_error(path + ": error: " + what);
+}
+
 #if defined(__GNUC__)
 __attribute__((format(printf, 2, 3)))
 #endif

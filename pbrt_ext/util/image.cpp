@@ -1,6 +1,7 @@
 #include "pbrt_ext/util/image.h"
 
 #include "pbrt_ext/util/colorspace.h"
+#include "pbrt_ext/util/error.h"
 
 #include "pbrt_ext/util/atomicfile.h"
 #include "pbrt_ext/util/imagecodec.h"
@@ -31,10 +32,6 @@
 namespace pbrt {
 
 namespace {
-
-[[noreturn]] void ThrowFileError(const std::string &path, const std::string &what) {
-    throw std::runtime_error(path + ": error: " + what);
-}
 
 std::string LowercaseExtension(const std::string &path) {
     std::string ext = std::filesystem::path(path).extension().string();
@@ -81,6 +78,8 @@ std::unique_ptr<ImageFileReader> OpenImageFile(const std::string &path) {
 }
 
 }  // namespace
+
+bool IsEXRFilename(const std::string &path) { return LowercaseExtension(path) == ".exr"; }
 
 Image::Image(Point2i res) : resolution(res) {
     if (res.x < 0 || res.y < 0)
@@ -144,15 +143,16 @@ std::string ColorEncoding::ToString() const {
 
 namespace {
 
-// Every channel of every pixel of the file as float, after the checks that keep a corrupt or
-// hostile header from allocating what it declares. The caller keeps, besides the file's floats,
-// keptBytesPerChannel per channel and keptBytesPerPixel per pixel (the image's own RGB, or
-// ReadEXRChannels' copies and its caller's share).
+// Every channel of every pixel of a file as float.
 struct RawImage {
     ImageFileSpec spec;
     std::vector<float> pixels;  // spec.nChannels per pixel, row-major
 };
 
+// The file's RawImage, after the checks that keep a corrupt or hostile header from allocating
+// what it declares. The caller keeps, besides the file's floats, keptBytesPerChannel per channel
+// and keptBytesPerPixel per pixel (the image's own RGB, or ReadEXRChannels' copies and its
+// caller's share).
 RawImage ReadRawImage(const std::string &path, uint64_t keptBytesPerChannel, uint64_t keptBytesPerPixel) {
     CheckDeclaredSizes(path);  // before a decoder allocates what a corrupt header declares
     std::unique_ptr<ImageFileReader> in;
@@ -271,7 +271,7 @@ void Image::Write(const std::string &path, const ImageMetadata &metadata,
             ThrowFileError(path, "channel \"" + channel.name + "\" has " +
                                      std::to_string(channel.values.size()) + " values for " +
                                      std::to_string(nPixels) + " pixels");
-    if (LowercaseExtension(path) == ".exr")
+    if (IsEXRFilename(path))
         WriteFileAtomically(path, [&](const std::string &tmp) { WriteEXR(path, tmp, metadata, extraChannels); });
     else if (extraChannels.empty())
         WriteFileAtomically(path, [&](const std::string &tmp) { Write8Bit(path, tmp); });

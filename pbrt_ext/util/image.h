@@ -168,6 +168,11 @@ struct EXRChannels {
     std::map<std::string, std::vector<float>> channels;  // one value per pixel, row-major
     std::map<std::string, std::string> stringAttributes;
 };
+
+// Whether Image::Write makes an EXR of path (by its extension, in any case): the only format it
+// writes that keeps channels besides R, G and B.
+bool IsEXRFilename(const std::string &path);
+
 // keptBytesPerPixel: what the caller will make of each pixel, checked with the read against the
 // memory budget (util/resourcelimits.h). Throws std::runtime_error("<path>: error: <what>"), also
 // for a file that is not OpenEXR, or too large for the budget.

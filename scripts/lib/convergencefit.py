@@ -26,3 +26,8 @@ def seconds_per_spp(points):
     """From the largest spp, where fixed costs (tiles, threads) matter least."""
     spp, seconds, _ = max(points)
     return seconds / spp
+
+
+def efficiency(c, points):
+    """1 / (relMSE x seconds) of the fit: 1 / (c x seconds per spp)."""
+    return 1 / (c * seconds_per_spp(points))

@@ -14,11 +14,19 @@ import time
 LIB = os.path.dirname(os.path.abspath(__file__))
 
 
+def local_cluster(workers):
+    """A cluster of `workers` processes on this machine, one thread each, quiet, its dashboard on
+    a free port (a fixed one would clash with a cluster already running)."""
+    from distributed import LocalCluster
+    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                        dashboard_address=":0", silence_logs=40)
+
+
 @contextlib.contextmanager
 def connect(scheduler=None, workers=None):
     """A distributed.Client; workers: local worker processes (default: one per 2 cores)."""
     import dask
-    from distributed import Client, LocalCluster
+    from distributed import Client
     # Quiet workers: pbrt_ext's failures are reported per task, not as worker logs.
     dask.config.set({"distributed.logging.distributed": "error",
                      "distributed.scheduler.allowed-failures": 3})
@@ -26,9 +34,7 @@ def connect(scheduler=None, workers=None):
         client = Client(scheduler)
         cluster = None
     else:
-        n = workers or max(1, (os.cpu_count() or 2) // 2)
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                               dashboard_address=":0", silence_logs=40)
+        cluster = local_cluster(workers or max(1, (os.cpu_count() or 2) // 2))
         client = Client(cluster)
     try:
         # Workers import the task module from the file the client sends.

@@ -14,6 +14,7 @@ N machines would, Dask's own scheduling and communication costs included.
 import heapq
 import time
 
+from studycluster import local_cluster
 from studydb import Database
 
 MERGE_SECONDS = 0.1  # a merge reads and writes a few EXRs
@@ -64,9 +65,8 @@ def _sleep(seconds, *dependencies):
 
 def dask_seconds_per_task(count=500):
     """What Dask adds to a task: empty tasks through one local worker process, per task."""
-    from distributed import Client, LocalCluster, wait
-    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0",
-                      silence_logs=40) as cluster, Client(cluster) as client:
+    from distributed import Client, wait
+    with local_cluster(1) as cluster, Client(cluster) as client:
         client.wait_for_workers(1)
         start = time.perf_counter()
         wait([client.submit(_sleep, 0, pure=False) for _ in range(count)])
@@ -76,9 +76,8 @@ def dask_seconds_per_task(count=500):
 def replay(tasks, workers, scale):
     """The measured makespan of the graph with each task sleeping seconds x scale, on a local
     cluster of `workers` processes (its start-up not counted)."""
-    from distributed import Client, LocalCluster, wait
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                      dashboard_address=":0", silence_logs=40) as cluster, Client(cluster) as client:
+    from distributed import Client, wait
+    with local_cluster(workers) as cluster, Client(cluster) as client:
         client.wait_for_workers(workers)
         futures = {}
         start = time.perf_counter()

@@ -15,7 +15,7 @@ import os
 import statistics
 from collections import defaultdict
 
-from convergencefit import fit_c, reference_floor, seconds_per_spp
+from convergencefit import efficiency, fit_c, reference_floor
 from studydb import Database
 from studyfile import DIMENSIONS
 
@@ -83,7 +83,7 @@ def scene_table(study, dims, scene, by_key, c_of):
     counts = sorted({spp for pts in by_key.values() for spp, _, _ in pts})
     base = baseline_key(study, dims, by_key)
     base_pts = {spp: (sec, rel) for spp, sec, rel in by_key[base]}
-    efficiency = {key: 1 / (c_of[key] * seconds_per_spp(pts)) for key, pts in by_key.items()}
+    eff_of = {key: efficiency(c_of[key], pts) for key, pts in by_key.items()}
     lines = [f"### {scene} (baseline: {label(base)})", "",
              "| series | " + " | ".join(f"relMSE {n}" for n in counts)
              + " | c | c / baseline | efficiency / baseline | "
@@ -96,7 +96,7 @@ def scene_table(study, dims, scene, by_key, c_of):
                    if n in at and n in base_pts else None, ".2f") for n in counts]
         lines.append(f"| {label(key)} | " + " | ".join(rel)
                      + f" | {c_of[key]:.3g} | {c_of[key] / c_of[base]:.3g} | "
-                     + f"{efficiency[key] / efficiency[base]:.3g} | " + " | ".join(eff) + " |")
+                     + f"{eff_of[key] / eff_of[base]:.3g} | " + " | ".join(eff) + " |")
     return lines
 
 
@@ -181,8 +181,8 @@ def plot(series, dims, fits, study, out):
         for scene in scenes:
             by_key, c_of = series[scene], fits[scene]
             base = baseline_key(study, dims, by_key)
-            eff = lambda k: 1 / (c_of[k] * seconds_per_spp(by_key[k]))  # noqa: E731
-            ratios.append(eff(key) / eff(base) if key in by_key else float("nan"))
+            ratios.append(efficiency(c_of[key], by_key[key]) / efficiency(c_of[base], by_key[base])
+                          if key in by_key else float("nan"))
         ax.bar([j + (i - (len(keys) - 1) / 2) * width for j in range(len(scenes))], ratios, width,
                label=label(key), color=colours.get(key[-1] if key else None),
                hatch=hatches.get(key[0], "") if len(key) > 1 else "", edgecolor="white")
