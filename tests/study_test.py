@@ -193,6 +193,28 @@ class Study(StudyCase):
         self.assertIn("0 configurations to render, 16 stored", again.stderr)
 
 
+class StudyFileErrors(StudyCase):
+    def test_bad_study_files_are_refused_before_anything_runs(self):
+        scene = f'scenes = ["{SCENES}/cylinder_r0.1.pbrt"]\nspp = [4]\n'
+        cases = {
+            'scenes = ["missing.pbrt"]\nspp = [4]\n': 'scene "missing.pbrt" not found',
+            scene + 'strategy = ["mis"]\n': 'unknown key "strategy"',
+            scene + 'seeds = [0, "one"]\n': '"seeds" must be a list of ints',
+            scene + 'threads = 0\n': '"threads" must be a positive integer',
+            scene + 'resolution = [32]\n': '"resolution" must be two positive integers',
+            scene + '[reference]\nslices = -2\n': '"reference.slices" must be a positive integer',
+            scene + '[reference]\nseed = 0\n': "the reference's seed 0 is one of",
+            'scenes = [\n': "error: ",
+        }
+        for text, message in cases.items():
+            path = self.write_study(text, "bad.toml")
+            done = self.run_study(path)
+            self.assertEqual(done.returncode, 2, text)
+            self.assertIn(f"{path}: error: ", done.stderr)
+            self.assertIn(message, done.stderr, text)
+            self.assertFalse(os.path.exists(os.path.join(self.dir, "bad.study")), text)
+
+
 class MakespanModel(unittest.TestCase):
     def test_list_scheduling_of_a_reference_and_its_configurations(self):
         # Two 1 s slices, their 0.1 s merge, then four 1 s configurations that wait for it.

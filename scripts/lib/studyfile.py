@@ -159,6 +159,15 @@ def _list(data, key, path, kind):
     return value
 
 
+def _positive(table, key, path, kind, default, where=""):
+    """table[key] (default when absent) if it is a positive number of kind."""
+    value = table.get(key, default)
+    if isinstance(value, bool) or not isinstance(value, kind) or value <= 0:
+        raise StudyError(f"{path}: error: \"{where}{key}\" must be a positive "
+                         f"{'integer' if kind is int else 'number'}, not {value!r}")
+    return value
+
+
 def load(path):
     """The study of the file; raises StudyError for anything missing or misspelt."""
     path = os.path.abspath(path)
@@ -187,17 +196,23 @@ def load(path):
     if len({s.name for s in scenes}) != len(scenes):
         raise StudyError(f"{path}: error: two scenes share a file name")
     reference = data.get("reference", {})
+    resolution = data.get("resolution")
+    if resolution is not None and (not isinstance(resolution, list) or len(resolution) != 2 or not all(
+            isinstance(v, int) and not isinstance(v, bool) and v > 0 for v in resolution)):
+        raise StudyError(f"{path}: error: \"resolution\" must be two positive integers, not "
+                         f"{resolution!r}")
     study = Study(
         path=path, name=data.get("name", os.path.splitext(os.path.basename(path))[0]),
         binary=os.path.normpath(os.path.join(folder, data["binary"])) if "binary" in data
         else DEFAULT_BINARY,
         scenes=scenes,
         choices={f: _list(data, key, path, str) or [None] for key, (f, _) in DIMENSIONS.items()},
-        spp=spp, seeds=_list(data, "seeds", path, int) or [0],
-        resolution=data.get("resolution"), threads=data.get("threads", 1),
-        timeout=data.get("timeout", 600),
-        reference_spp=reference.get("spp", 4096), reference_seed=reference.get("seed", 1000),
-        reference_slices=reference.get("slices", 8),
+        spp=spp, seeds=_list(data, "seeds", path, int) or [0], resolution=resolution,
+        threads=_positive(data, "threads", path, int, 1),
+        timeout=_positive(data, "timeout", path, (int, float), 600),
+        reference_spp=_positive(reference, "spp", path, int, 4096, "reference."),
+        reference_seed=reference.get("seed", 1000),
+        reference_slices=_positive(reference, "slices", path, int, 8, "reference."),
         reference_integrator=reference.get("integrator", {}),
         baseline=data.get("report", {}).get("baseline", {}))
     if study.reference_seed in study.seeds:
