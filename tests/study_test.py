@@ -138,19 +138,18 @@ class Study(StudyCase):
             if r["key"] in first:
                 self.assertEqual(r, first[r["key"]])
 
-    def test_killed_worker_loses_and_duplicates_nothing(self):
-        path = self.slow_study()
-        process = self.start_study(path)
-        self.wait_for_rows(path, process, 2)
-        # A worker in the middle of a render: the parent of a running pbrt_ext.
-        victim = None
+    def kill_worker_rendering(self, process, reference_slice):
+        """SIGKILLs a worker of the study in the middle of a render, of a reference's slice
+        (--samples) or of a configuration: the parent of such a running pbrt_ext."""
         deadline = time.monotonic() + TIMEOUT
-        while victim is None and time.monotonic() < deadline and process.poll() is None:
+        while time.monotonic() < deadline and process.poll() is None:
             for pid in os.listdir("/proc"):
                 try:
                     with open(f"/proc/{pid}/cmdline", "rb") as f:
-                        if os.path.basename(f.read().split(b"\0")[0]) != b"pbrt_ext":
-                            continue
+                        command = f.read().split(b"\0")
+                    if (os.path.basename(command[0]) != b"pbrt_ext"
+                            or (b"--samples" in command) != reference_slice):
+                        continue
                     with open(f"/proc/{pid}/stat") as f:
                         parent = int(f.read().rsplit(")", 1)[1].split()[1])
                     with open(f"/proc/{parent}/stat") as f:
@@ -158,15 +157,33 @@ class Study(StudyCase):
                 except (OSError, ValueError, IndexError):
                     continue
                 if grandparent == process.pid:  # the worker is a child of the study
-                    victim = parent
-                    break
-        self.assertIsNotNone(victim, "no worker caught rendering")
-        os.kill(victim, signal.SIGKILL)
+                    os.kill(parent, signal.SIGKILL)
+                    return
+        self.fail("no worker caught rendering " + ("a slice" if reference_slice else
+                                                   "a configuration"))
+
+    def assert_killed_worker_lost_and_duplicated_nothing(self, path, process):
         output = process.communicate(timeout=TIMEOUT)[0]
         self.assertEqual(process.returncode, 0, output)
         rows = self.assert_every_row_once(path, 16)
         for r in rows:
             self.assertEqual(r["status"], "ok", r)
+
+    def test_worker_killed_in_a_configuration_loses_and_duplicates_nothing(self):
+        path = self.slow_study()
+        process = self.start_study(path)
+        self.wait_for_rows(path, process, 2)
+        self.kill_worker_rendering(process, reference_slice=False)
+        self.assert_killed_worker_lost_and_duplicated_nothing(path, process)
+
+    def test_worker_killed_in_a_reference_slice_loses_and_duplicates_nothing(self):
+        path = self.slow_study()
+        process = self.start_study(path)
+        self.kill_worker_rendering(process, reference_slice=True)
+        self.assert_killed_worker_lost_and_duplicated_nothing(path, process)
+        references = os.path.join(self.dir, "study.study", "references")
+        self.assertEqual(sorted(f for f in os.listdir(references) if ".slice" not in f),
+                         ["cornell_fabric.spp64.seed1000.exr", "cylinder_r0.1.spp64.seed1000.exr"])
 
     def test_broken_scene_is_recorded_as_failed_with_its_message(self):
         broken = os.path.join(self.dir, "broken.pbrt")
@@ -232,6 +249,14 @@ class MakespanModel(unittest.TestCase):
         self.assertAlmostEqual(studymodel.predict(tasks, 1), 7)
         self.assertAlmostEqual(studymodel.predict(tasks, 2), 5)
 
+
+    def test_replay_starts_each_task_after_those_it_waits_for(self):
+        # The graph above, each task sleeping its time x 0.2, on 4 local workers: started at
+        # once, the tasks would take 0.2 s; the critical path (slice, merge, configuration)
+        # takes 0.42 s whatever Dask adds.
+        tasks = [("s0", 1, 10, []), ("s1", 1, 10, []), ("merge", 0.1, 10, ["s0", "s1"])]
+        tasks += [(f"c{i}", 1, 0, ["merge"]) for i in range(4)]
+        self.assertGreaterEqual(studymodel.replay(tasks, 4, 0.2), 0.42)
 
 class RenderDistributed(StudyCase):
     def test_parts_merge_into_the_single_render(self):

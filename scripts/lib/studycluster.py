@@ -46,14 +46,19 @@ def connect(scheduler=None, workers=None):
             cluster.close()
 
 
+def failure(message):
+    """A task's record where it did not produce one: failed, with why."""
+    return {"status": "failed", "message": message, "wall_seconds": None, "seconds": None,
+            "relmse": None, "worker": None, "binary_version": None}
+
+
 def outcome_of(future):
     """The task's result, or, where it raised (its worker died three times, or the task itself
     failed), a failure record with the exception's message."""
     try:
         return future.result()
     except Exception as e:  # noqa: BLE001: every failure is an outcome to report
-        return {"status": "failed", "message": f"{type(e).__name__}: {e}", "wall_seconds": None,
-                "seconds": None, "relmse": None, "worker": None, "binary_version": None}
+        return failure(f"{type(e).__name__}: {e}")
 
 
 class ProgressBar:

@@ -7,9 +7,10 @@ each group in submission order. The model is list scheduling, as Dask's schedule
 worker that frees takes the first ready task of the highest priority. Task times are the
 database's wall seconds (process start, loading, rendering, relMSE: everything a worker spends).
 
-The replay submits the same graph to a local cluster of N worker processes, each task sleeping
-for its time x scale: sleeping leaves the cores free, so N processes on this machine behave as
-N machines would, Dask's own scheduling and communication costs included.
+The replay runs the same graph on a local cluster of N worker processes the way the study does
+(each task submitted once the tasks it waits for are done), each task sleeping for its time x
+scale: sleeping leaves the cores free, so N processes on this machine behave as N machines
+would, Dask's own scheduling and communication costs included.
 """
 import heapq
 import time
@@ -58,7 +59,7 @@ def predict(tasks, workers):
     return max(done_at.values(), default=0.0)
 
 
-def _sleep(seconds, *dependencies):
+def _sleep(seconds):
     time.sleep(seconds)
     return seconds
 
@@ -76,16 +77,31 @@ def dask_seconds_per_task(count=500):
 def replay(tasks, workers, scale):
     """The measured makespan of the graph with each task sleeping seconds x scale, on a local
     cluster of `workers` processes (its start-up not counted)."""
-    from distributed import Client, wait
+    from distributed import Client, as_completed
+    waits_for = {name: len(dependencies) for name, _, _, dependencies in tasks}
+    dependents = {name: [] for name, _, _, _ in tasks}
+    for task in tasks:
+        for dependency in task[3]:
+            dependents[dependency].append(task)
     with local_cluster(workers) as cluster, Client(cluster) as client:
         client.wait_for_workers(workers)
-        futures = {}
+        names, pending = {}, as_completed()
+
+        def submit(task):
+            future = client.submit(_sleep, task[1] * scale, priority=task[2], pure=False)
+            names[future] = task[0]
+            pending.add(future)
+
         start = time.perf_counter()
-        for name, seconds, priority, dependencies in tasks:
-            futures[name] = client.submit(_sleep, seconds * scale,
-                                          *[futures[d] for d in dependencies],
-                                          priority=priority, pure=False)
-        wait(list(futures.values()))
+        for task in tasks:
+            if not task[3]:
+                submit(task)
+        for future in pending:
+            for task in dependents[names.pop(future)]:
+                waits_for[task[0]] -= 1
+                if waits_for[task[0]] == 0:
+                    submit(task)
+            future.release()
         return time.perf_counter() - start
 
 

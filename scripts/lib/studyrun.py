@@ -1,17 +1,22 @@
 """scripts/study run: a study's missing references and configurations as Dask tasks.
 
-Each scene's reference is rendered first (its slices and their merge have the higher priority,
-and every configuration of the scene waits for it), split into sample slices over the workers
-and merged exactly (pbrt_ext merge). Every configuration without a stored result is one task
-that runs pbrt_ext and computes relMSE against the reference on its worker. Results are stored
-as they arrive (studydb). A configuration that fails is stored as failed with pbrt_ext's
-message and not retried (Dask retries a task only when its worker dies, up to three times).
+Each scene's reference is rendered first, split into sample slices over the workers (at the
+higher priority) and merged exactly (pbrt_ext merge); the scene's configurations are submitted
+once its merge is done. Every configuration without a stored result is one task that runs
+pbrt_ext and computes relMSE against the reference on its worker. Results are stored as they
+arrive (studydb). A configuration that fails is stored as failed with pbrt_ext's message and
+not retried (Dask retries a task only when its worker dies, up to three times).
+
+No task takes another task's result as an input: the client passes file paths once it has the
+outcome, and releases every future it has stored. A worker that dies then loses only the
+tasks it was running, which Dask runs again; Debian's Dask 2022.12 could hang or re-run a
+finished merge over its deleted slices when a dead worker held results other tasks needed.
 """
 import os
 import sys
 
 import studytasks
-from studycluster import ProgressBar, outcome_of
+from studycluster import ProgressBar, failure, outcome_of
 from studydb import Database
 
 
@@ -19,97 +24,133 @@ def _job(study, scene, args):
     return {"binary": study.binary, "scene": scene.path, "args": args, "timeout": study.timeout}
 
 
-def _submit_reference(client, study, scene):
-    """The futures of the scene's slices and of their merge."""
-    os.makedirs(os.path.dirname(study.reference_path(scene)), exist_ok=True)
-    slices, files = [], []
-    for first, last in study.reference_slices_of():
-        outfile = study.reference_path(scene).replace(".exr", f".slice{first}-{last}.exr")
-        files.append(outfile)
-        slices.append(client.submit(studytasks.render_slice,
-                                    _job(study, scene, study.reference_args(scene, first, last)),
-                                    outfile, pure=False, priority=10))
-    merge = client.submit(studytasks.merge_slices, study.binary, study.reference_path(scene),
-                          slices, files, study.timeout, pure=False, priority=10)
-    return slices, merge
-
-
 class StudyRun:
     def __init__(self, study, client, database, stream=sys.stderr):
         self.study, self.client, self.db, self.stream = study, client, database, stream
-        self.kind = {}           # future -> ("slice", scene) | ("reference", scene, slices) | ("config", key, config)
-        self.work = {}           # future -> its samples per pixel, what the progress bar weighs
-        self.references = {}     # scene name -> reference path, or the merge's future
+        self.kind = {}      # future -> ("slice", scene) | ("merge", scene) | ("config", key, config)
+        self.work = {}      # future -> its samples per pixel, what the progress bar weighs
+        self.todo = {}      # scene name -> [(key, config)] without a stored result
+        self.slices = {}    # scene name -> the outcomes of its reference's finished slices
+        self.progress = None
 
-    def submit_references(self):
-        for scene in self.study.scenes:
-            row = self.db.reference(scene.name)
-            if row and os.path.exists(row["path"]) and row["spp"] == self.study.reference_spp:
-                self.references[scene.name] = row["path"]
-                continue
-            slices, merge = _submit_reference(self.client, self.study, scene)
-            for s, (first, last) in zip(slices, self.study.reference_slices_of()):
-                self.kind[s] = ("slice", scene)
-                self.work[s] = last - first
-            self.kind[merge] = ("reference", scene, slices)
-            self.work[merge] = 0
-            self.references[scene.name] = merge
-
-    def submit_configurations(self):
+    def plan(self):
+        """The configurations to render, by scene; their count and the stored ones' count."""
         done = self.db.keys()
-        todo = 0
-        scenes = {s.name: s for s in self.study.scenes}
+        self.todo = {scene.name: [] for scene in self.study.scenes}
         for config in self.study.configurations():
             key = self.study.configuration_key(config)
-            if key in done:
-                continue
-            scene = scenes[config["scene"]]
-            future = self.client.submit(studytasks.render_configuration,
-                                        _job(self.study, scene, self.study.render_args(config)),
-                                        self.references[scene.name], pure=False)
-            self.kind[future] = ("config", key, config)
-            self.work[future] = config["spp"]
-            todo += 1
-        return todo, len(done)
+            if key not in done:
+                self.todo[config["scene"]].append((key, config))
+        return sum(len(t) for t in self.todo.values()), len(done)
 
-    def store(self, future):
-        """Stores the task's outcome where it is a configuration or a reference; returns it."""
-        kind = self.kind[future]
+    def stored_reference(self, scene):
+        row = self.db.reference(scene.name)
+        if row and os.path.exists(row["path"]) and row["spp"] == self.study.reference_spp:
+            return row["path"]
+        return None
+
+    def submit(self, function, *args, kind, work, priority=0):
+        future = self.client.submit(function, *args, pure=False, priority=priority)
+        self.kind[future], self.work[future] = kind, work
+        return future
+
+    def slice_file(self, scene, first, last):
+        return self.study.reference_path(scene).replace(".exr", f".slice{first}-{last}.exr")
+
+    def submit_slices(self, scene):
+        os.makedirs(os.path.dirname(self.study.reference_path(scene)), exist_ok=True)
+        self.slices[scene.name] = []
+        return [self.submit(studytasks.render_slice,
+                            _job(self.study, scene, self.study.reference_args(scene, first, last)),
+                            self.slice_file(scene, first, last), kind=("slice", scene),
+                            work=last - first, priority=10)
+                for first, last in self.study.reference_slices_of()]
+
+    def submit_configurations(self, scene, reference):
+        return [self.submit(studytasks.render_configuration,
+                            _job(self.study, scene, self.study.render_args(config)), reference,
+                            kind=("config", key, config), work=config["spp"])
+                for key, config in self.todo[scene.name]]
+
+    def store_result(self, key, config, outcome):
+        scene = next(s for s in self.study.scenes if s.name == config["scene"])
+        self.db.add_result(key, {**config, **outcome, "scene_hash": scene.hash})
+
+    def reference_failed(self, scene, message):
+        """Stores every configuration of the scene as failed, without rendering it."""
+        self.stream.write(f"\nreference of {scene.name} failed: {message}\n")
+        for key, config in self.todo[scene.name]:
+            self.store_result(key, config, failure("no reference: " + message))
+            self.progress.advance(config["spp"])
+
+    def slice_done(self, scene, outcome):
+        """Once every slice is in: the merge's future, or none where a slice failed."""
+        records = self.slices[scene.name]
+        records.append(outcome)
+        if len(records) < len(self.study.reference_slices_of()):
+            return []
+        failed = [r for r in records if r["status"] != "ok"]
+        if failed:
+            self.reference_failed(scene, "a slice failed: " + failed[0]["message"])
+            return []
+        files = [self.slice_file(scene, first, last)
+                 for first, last in self.study.reference_slices_of()]
+        return [self.submit(studytasks.merge_slices, self.study.binary,
+                            self.study.reference_path(scene), files, self.study.timeout,
+                            kind=("merge", scene), work=0, priority=10)]
+
+    def merge_done(self, scene, outcome):
+        """Stores the reference; the futures of the scene's configurations."""
+        if outcome["status"] != "ok":
+            self.reference_failed(scene, outcome["message"])
+            return []
+        records = self.slices.pop(scene.name)
+        self.db.add_reference({
+            "scene": scene.name, "path": self.study.reference_path(scene),
+            "spp": self.study.reference_spp, "seed": self.study.reference_seed,
+            "slices": len(records), "seconds": sum(r["seconds"] or 0 for r in records),
+            "wall_seconds": sum(r["wall_seconds"] or 0 for r in records),
+            "binary_version": records[0].get("binary_version"), "scene_hash": scene.hash})
+        return self.submit_configurations(scene, self.study.reference_path(scene))
+
+    def finish(self, future):
+        """Stores the task's outcome and releases its future; the futures it unblocks."""
+        kind, work = self.kind.pop(future), self.work.pop(future)
         outcome = outcome_of(future)
-        if kind[0] == "config":
-            _, key, config = kind
-            scene = next(s for s in self.study.scenes if s.name == config["scene"])
-            self.db.add_result(key, {**config, **outcome, "scene_hash": scene.hash})
-        elif kind[0] == "reference":
-            _, scene, slices = kind
-            if isinstance(outcome, str):
-                records = [outcome_of(s) for s in slices]
-                self.db.add_reference({
-                    "scene": scene.name, "path": outcome, "spp": self.study.reference_spp,
-                    "seed": self.study.reference_seed, "slices": len(slices),
-                    "seconds": sum(r["seconds"] or 0 for r in records),
-                    "wall_seconds": sum(r["wall_seconds"] or 0 for r in records),
-                    "binary_version": records[0].get("binary_version"), "scene_hash": scene.hash})
-            else:
-                self.stream.write(f"\nreference of {scene.name} failed: {outcome['message']}\n")
-        return outcome
+        future.release()  # a finished task is not run again when its worker dies later
+        self.progress.advance(work)
+        if kind[0] == "slice":
+            return self.slice_done(kind[1], outcome)
+        if kind[0] == "merge":
+            return self.merge_done(kind[1], outcome)
+        _, key, config = kind
+        self.store_result(key, config, outcome)
+        return []
 
     def run(self):
         """Renders what is missing; returns the number of failed configurations stored."""
         from distributed import as_completed
-        self.submit_references()
-        todo, done = self.submit_configurations()
+        todo, done = self.plan()
+        pending, references, work = as_completed(), 0, sum(
+            c["spp"] for t in self.todo.values() for _, c in t)
+        for scene in self.study.scenes:
+            reference = self.stored_reference(scene)
+            if reference:
+                futures = self.submit_configurations(scene, reference)
+            else:
+                futures = self.submit_slices(scene)
+                references += 1
+                work += self.study.reference_spp
+            for future in futures:
+                pending.add(future)
         self.stream.write(f"study {self.study.name}: {todo} configurations to render, {done} "
-                          f"stored; {sum(1 for k in self.kind.values() if k[0] == 'reference')} "
-                          f"references to render\n")
-        progress = ProgressBar(len(self.kind), "tasks", self.stream, sum(self.work.values()))
-        failed = 0
-        for future in as_completed(list(self.kind)):
-            outcome = self.store(future)
-            if self.kind[future][0] == "config" and outcome["status"] == "failed":
-                failed += 1
-            progress.advance(self.work[future])
-        return failed
+                          f"stored; {references} references to render\n")
+        tasks = todo + references * (len(self.study.reference_slices_of()) + 1)
+        self.progress = ProgressBar(tasks, "tasks", self.stream, work)
+        for future in pending:
+            for unblocked in self.finish(future):
+                pending.add(unblocked)
+        return len(self.db.keys("failed") & {k for t in self.todo.values() for k, _ in t})
 
 
 def run(study, client, retry_failed=False, stream=sys.stderr):

@@ -111,12 +111,7 @@ def render_to(job, outfile):
 
 def render_configuration(job, reference):
     """One configuration of a study: rendered into a temporary file, compared with the
-    reference (a path, or a failure record of the reference), then deleted. reference comes
-    from the reference's task, which Dask finishes first."""
-    if isinstance(reference, dict):  # the reference failed
-        return {"status": "failed", "message": "no reference: " + reference["message"],
-                "worker": worker_name(), "wall_seconds": 0.0, "seconds": None, "relmse": None,
-                "binary_version": None}
+    reference (its path), then deleted."""
     start = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="pbrt_ext_study_") as folder:
         outfile = os.path.join(folder, "render.exr")
@@ -141,15 +136,17 @@ def render_slice(job, outfile):
     return render_to(job, outfile)
 
 
-def merge_slices(binary, outfile, slice_records, slice_files, timeout):
-    """pbrt_ext merge of the slices into outfile: the outfile path, or a failure record when a
-    slice or the merge failed. Runs after every slice's task (their records are its inputs)."""
-    failed = [r for r in slice_records if r["status"] != "ok"]
-    if failed:
-        return {"status": "failed", "message": "a slice failed: " + failed[0]["message"]}
-    record = run_pbrt_ext(binary, ["merge", "--quiet", outfile, *slice_files], timeout)
-    if record["status"] != "ok":
-        return record
+def merge_slices(binary, outfile, slice_files, timeout):
+    """pbrt_ext merge of the slices into outfile, then the slices removed; the run_pbrt_ext
+    record. Run again after its worker died, it keeps an outfile whose slices are already
+    being removed: pbrt_ext writes the outfile atomically, and removes nothing before."""
+    merged_before = os.path.exists(outfile) and not all(os.path.exists(f) for f in slice_files)
+    record = {"status": "ok", "message": "", "wall_seconds": 0.0}
+    if not merged_before:
+        record = run_pbrt_ext(binary, ["merge", "--quiet", outfile, *slice_files], timeout)
+        if record["status"] != "ok":
+            return record
     for file in slice_files:  # the merge is a slice of them all, itself mergeable further
-        os.remove(file)
-    return outfile
+        if os.path.exists(file):
+            os.remove(file)
+    return record
