@@ -1,5 +1,6 @@
 // Cameras: rays and ray differentials from film positions (pbrt-v4's cameras.h, reduced to the
-// perspective, orthographic and spherical cameras, without importance functions).
+// perspective, orthographic and spherical cameras, without importance functions; the realistic
+// camera is in realisticcamera.h).
 //
 // Spaces as in pbrt-v4: camera space looks down +z with +y up and +x to the right of the image;
 // screen space is the image plane with the screen window's extent; raster space counts pixels of
@@ -7,7 +8,9 @@
 // so cameras take worldFromCamera (the inverse of a scene file's LookAt/CTM, cameraFromWorld).
 #pragma once
 
+#include "pbrt_ext/camerabase.h"
 #include "pbrt_ext/filters.h"
+#include "pbrt_ext/realisticcamera.h"
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/ray.h"
 #include "pbrt_ext/samplers.h"
@@ -26,48 +29,6 @@
 #include <variant>
 
 namespace pbrt {
-
-// pFilm in raster coordinates of the full resolution; pLens and time in [0, 1).
-struct CameraSample {
-    Point2f pFilm;
-    Point2f pLens;
-    Float time = 0;
-    Float filterWeight = 1;
-};
-
-// Where the camera is while its shutter is open (pbrt-v4's CameraTransform with the shutter of
-// CameraBaseParameters): a ray's time is drawn uniformly over [shutterOpen, shutterClose], and a
-// moving camera is placed where it is at that time.
-class CameraMotion {
-  public:
-    CameraMotion(const Transform &worldFromCamera) : worldFromCamera(worldFromCamera) {}
-    CameraMotion(const AnimatedTransform &worldFromCamera, Float shutterOpen, Float shutterClose)
-        : worldFromCamera(worldFromCamera), shutterOpen(shutterOpen), shutterClose(shutterClose) {}
-
-    // The camera-space ray r, given the time u picks, in world space.
-    Ray ToWorld(Ray r, Float u) const {
-        r.time = Lerp(u, shutterOpen, shutterClose);
-        return worldFromCamera(r);
-    }
-    // At the shutter's opening, and at a ray's time.
-    const Transform &Start() const { return worldFromCamera.Start(); }
-    Transform At(Float time) const { return worldFromCamera.Interpolate(time); }
-    bool IsAnimated() const { return worldFromCamera.IsAnimated(); }
-
-  private:
-    AnimatedTransform worldFromCamera;
-    Float shutterOpen = 0, shutterClose = 1;
-};
-
-struct CameraRay {
-    Ray ray;
-    SampledSpectrum weight = SampledSpectrum(1);
-};
-
-struct CameraRayDifferential {
-    RayDifferential ray;
-    SampledSpectrum weight = SampledSpectrum(1);
-};
 
 // pbrt-v4's default screen window: [-1, 1] along the shorter image axis and the aspect ratio's
 // extent along the longer, so that a perspective fov spans the shorter axis.
@@ -172,7 +133,8 @@ class SphericalCamera {
 
 // The closed set of cameras.
 class Camera {
-    using Variant = std::variant<PerspectiveCamera, OrthographicCamera, SphericalCamera>;
+    using Variant = std::variant<PerspectiveCamera, OrthographicCamera, SphericalCamera,
+                                 RealisticCamera>;
 
   public:
     template <typename C>

@@ -28,7 +28,8 @@ Filter CreateFilter(const SceneEntity &filter);
 // ratio.
 RGBFilm CreateFilm(const SceneEntity &film, Float exposureTime, Filter filter,
                    const RenderOverrides &overrides);
-Camera CreateCamera(const CameraSceneEntity &camera, const RGBFilm &film);
+// folder: the main scene file's, which relative lens and aperture files are in.
+Camera CreateCamera(const CameraSceneEntity &camera, const RGBFilm &film, const std::string &folder);
 // Keyframes of something that moves (a shape, an instance, the camera); a singular or
 // projective keyframe is a ParseError at loc, its message after `what`.
 AnimatedTransform CreateAnimatedTransform(const FileLoc &loc, const Transform &start,

@@ -91,20 +91,6 @@ Sampler MakeSampler(const SceneEntity &e, const RenderOverrides &overrides,
     }
 }
 
-Bounds2f ScreenWindow(const ParameterDictionary &p, const RGBFilm &film) {
-    std::vector<Float> sw = p.GetFloatArray("screenwindow");
-    Bounds2f window = DefaultScreenWindow(film.FullResolution());
-    Float frame = p.GetOneFloat("frameaspectratio", 0);
-    if (frame > 0)
-        window = frame > 1 ? Bounds2f(Point2f(-frame, -1), Point2f(frame, 1))
-                           : Bounds2f(Point2f(-1, -1 / frame), Point2f(1, 1 / frame));
-    if (sw.empty())
-        return window;
-    if (sw.size() != 4)
-        throw ParseError(*p.Loc("screenwindow"), "\"screenwindow\" needs four values");
-    return Bounds2f(Point2f(sw[0], sw[2]), Point2f(sw[1], sw[3]));
-}
-
 // What chose the film's pixel bounds: the command line's --pixelbounds or --cropwindow, else the
 // file's "pixelbounds" or "cropwindow", else the Film directive.
 FileLoc PixelBoundsLoc(const SceneEntity &e, const RenderOverrides &overrides) {
@@ -219,7 +205,9 @@ RGBFilm CreateFilm(const SceneEntity &e, Float exposureTime, Filter filter,
         });
     }
     PixelSensor sensor = CreateSensor(e, exposureTime);
-    p.GetOneFloat("diagonal", 35);
+    Float diagonal = p.GetOneFloat("diagonal", 35);
+    if (!(diagonal > 0))
+        throw ParseError(*p.Loc("diagonal"), fmt::format("\"diagonal\" {} mm is not positive", diagonal));
     p.GetOneBool("savefp16", true);
     Float maxComponent = p.GetOneFloat("maxcomponentvalue", Infinity);
     if (e.name == "rgb" || e.name.empty())
@@ -227,7 +215,7 @@ RGBFilm CreateFilm(const SceneEntity &e, Float exposureTime, Filter filter,
     CheckFilmSize(e, resolution, pixelBounds);
     return WithPixelBoundsLoc(e, overrides, [&] {
         return RGBFilm(resolution, pixelBounds, std::move(filter), filename, maxComponent, sensor,
-                       &RGBColorSpace::sRGB());
+                       &RGBColorSpace::sRGB(), diagonal / 1000);
     });
 }
 
@@ -249,64 +237,6 @@ AnimatedTransform CreateAnimatedTransform(const FileLoc &loc, const Transform &s
     } catch (const std::invalid_argument &error) {
         throw ParseError(loc, what + error.what());
     }
-}
-
-// The camera's placement over its shutter interval.
-CameraMotion CameraMotionOf(const CameraSceneEntity &e) {
-    const ParameterDictionary &p = e.parameters;
-    Float open = p.GetOneFloat("shutteropen", 0), close = p.GetOneFloat("shutterclose", 1);
-    return CameraMotion(CreateAnimatedTransform(e.loc, Inverse(e.cameraFromWorld.t[0]),
-                                                e.transformStartTime,
-                                                Inverse(e.cameraFromWorld.t[1]),
-                                                e.transformEndTime, "the camera's transform: "),
-                        open, close);
-}
-
-// pbrt-v4 reads the lens, frame and screen-window parameters of a spherical camera and has no
-// use for them; so they are read here.
-SphericalCamera CreateSphericalCamera(const CameraSceneEntity &e, CameraMotion worldFromCamera,
-                                      const RGBFilm &film) {
-    const ParameterDictionary &p = e.parameters;
-    for (const char *unused : {"lensradius", "focaldistance", "frameaspectratio"})
-        p.GetOneFloat(unused, 0);
-    p.GetFloatArray("screenwindow");
-    std::string mapping = p.GetOneString("mapping", "equalarea");
-    p.ReportUnused();
-    if (mapping != "equalarea" && mapping != "equirectangular")
-        throw ParseError(*p.Loc("mapping"), "spherical camera \"mapping\" \"" + mapping +
-                                                "\" is unknown; expected equalarea or "
-                                                "equirectangular");
-    return SphericalCamera(std::move(worldFromCamera), film.FullResolution(),
-                           mapping == "equalarea" ? SphericalCamera::Mapping::EqualArea
-                                                  : SphericalCamera::Mapping::EquiRectangular);
-}
-
-Camera CreateCamera(const CameraSceneEntity &e, const RGBFilm &film) {
-    const ParameterDictionary &p = e.parameters;
-    ExposureTime(e);  // the film's imaging ratio uses it, and it is checked there
-    CameraMotion worldFromCamera = CameraMotionOf(e);
-    Float lensRadius = p.GetOneFloat("lensradius", 0),
-          focalDistance = p.GetOneFloat("focaldistance", 1e6f);
-    Bounds2f window = ScreenWindow(p, film);
-    if (e.name == "orthographic") {
-        p.ReportUnused();
-        return OrthographicCamera(worldFromCamera, film.FullResolution(), window, lensRadius,
-                                  focalDistance);
-    }
-    if (e.name == "spherical")
-        return CreateSphericalCamera(e, std::move(worldFromCamera), film);
-    if (!e.name.empty() && e.name != "perspective") {
-        if (e.name != "realistic")
-            throw ParseError(e.loc, "unknown Camera \"" + e.name +
-                                        "\": expected perspective, orthographic, spherical or "
-                                        "realistic");
-        Substitute(e, "Camera", "a perspective camera");
-    }
-    Float fov = p.GetOneFloat("fov", 90);
-    if (e.name == "perspective" || e.name.empty())
-        p.ReportUnused();
-    return PerspectiveCamera(worldFromCamera, film.FullResolution(), window, fov, lensRadius,
-                             focalDistance);
 }
 
 Sampler CreateSampler(const SceneEntity &e, Point2i fullResolution,

@@ -27,9 +27,9 @@ Bounds2i PixelBoundsFromCropWindow(Point2i fullResolution, Bounds2f cropWindow) 
 
 RGBFilm::RGBFilm(Point2i fullResolution, Bounds2i pixelBounds, Filter filter, std::string filename,
                  Float maxComponentValue, std::optional<PixelSensor> sensor,
-                 const RGBColorSpace *colorSpace)
+                 const RGBColorSpace *colorSpace, Float diagonal)
     : fullResolution(fullResolution), pixelBounds(pixelBounds), filter(std::move(filter)),
-      filename(std::move(filename)), maxComponentValue(maxComponentValue),
+      filename(std::move(filename)), maxComponentValue(maxComponentValue), diagonal(diagonal),
       sensor(sensor ? *sensor : PixelSensor::Create("cie1931", 100, 0, 1, RGBColorSpace::sRGB())),
       colorSpace(colorSpace ? colorSpace : &RGBColorSpace::sRGB()),
       outputRGBFromSensorRGB(this->colorSpace->RGBFromXYZ * this->sensor.XYZFromSensorRGB),

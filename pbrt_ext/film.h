@@ -43,10 +43,11 @@ class RGBFilm {
     // Throws std::runtime_error for a non-positive resolution or pixel bounds that are empty or
     // not inside the full resolution.
     // sensor and colorSpace default to pbrt-v4's: the cie1931 sensor at ISO 100 and exposure 1,
-    // and sRGB.
+    // and sRGB; diagonal, the sensor's physical diagonal in metres (the realistic camera's),
+    // its 35 mm.
     RGBFilm(Point2i fullResolution, Bounds2i pixelBounds, Filter filter, std::string filename,
             Float maxComponentValue = Infinity, std::optional<PixelSensor> sensor = {},
-            const RGBColorSpace *colorSpace = nullptr);
+            const RGBColorSpace *colorSpace = nullptr, Float diagonal = 0.035f);
 
     Point2i FullResolution() const { return fullResolution; }
     Bounds2i PixelBounds() const { return pixelBounds; }
@@ -55,6 +56,7 @@ class RGBFilm {
     const RGBColorSpace &ColorSpace() const { return *colorSpace; }
     const PixelSensor &Sensor() const { return sensor; }
     Float MaxComponentValue() const { return maxComponentValue; }
+    Float Diagonal() const { return diagonal; }
     // The output colour space's RGB of the sensor's (GetPixelRGB's last step).
     const SquareMatrix<3> &OutputRGBFromSensorRGB() const { return outputRGBFromSensorRGB; }
 
@@ -162,6 +164,7 @@ class RGBFilm {
     Filter filter;
     std::string filename;
     Float maxComponentValue;
+    Float diagonal;
     PixelSensor sensor;
     const RGBColorSpace *colorSpace;
     SquareMatrix<3> outputRGBFromSensorRGB;

@@ -179,7 +179,7 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
 
     RGBFilm film = CreateFilm(scene.film, ExposureTime(scene.camera), CreateFilter(scene.filter),
                               overrides);
-    Camera camera = CreateCamera(scene.camera, film);
+    Camera camera = CreateCamera(scene.camera, film, folder);
     Sampler sampler = CreateSampler(scene.sampler, film.FullResolution(), overrides);
     std::string lightSampler;
     PathIntegratorOptions integrator = CreateIntegrator(scene.integrator, overrides, &lightSampler);

@@ -3,11 +3,10 @@
 #include "pbrt_ext/paramdict.h"
 #include "pbrt_ext/util/colorspace.h"
 #include "pbrt_ext/util/error.h"
-#include "pbrt_ext/util/resourcelimits.h"
+#include "pbrt_ext/util/floatfile.h"
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <span>
 #include <sstream>
 #include <vector>
@@ -35,31 +34,12 @@ Spectrum FromPairs(std::span<const double> pairs, const FileLoc &loc, const std:
     return Spectrum::PiecewiseLinear(std::move(lambdas), std::move(values));
 }
 
-// A .spd file: whitespace-separated numbers, '#' comments to the end of a line (pbrt-v4's
-// ReadFloatFile), read as (lambda, value) pairs.
+// A .spd file (ReadFloatFile), read as (lambda, value) pairs.
 Spectrum ReadSpectrumFile(const SpectrumParam &param, const std::string &baseDir) {
     std::filesystem::path path(param.name);
     if (path.is_relative() && !baseDir.empty()) path = std::filesystem::path(baseDir) / path;
     std::string what = "spectrum file \"" + path.string() + "\"";
-    std::optional<uint64_t> size = RegularFileSize(path.string(), nullptr);
-    std::ifstream in;
-    if (size) in.open(path);  // never a device or pipe, which may never end
-    if (!in.is_open()) throw ParseError(param.loc, what + " cannot be read, expected a file of (wavelength, value) pairs");
-    CheckMemory(param.loc, "parsing " + what, SaturatingProduct({*size, kParsedTextBytesPerByte}));
-    std::vector<double> numbers;
-    std::string line;
-    for (int lineNo = 1; std::getline(in, line); ++lineNo) {
-        std::istringstream tokens(line.substr(0, line.find('#')));
-        std::string token;
-        while (tokens >> token) {
-            char *end = nullptr;
-            double v = std::strtod(token.c_str(), &end);
-            if (*end != '\0' || !std::isfinite(v))
-                throw ParseError(param.loc, what + " line " + std::to_string(lineNo) + ": \"" +
-                                                token + "\" is not a number, expected (wavelength, value) pairs");
-            numbers.push_back(v);
-        }
-    }
+    std::vector<double> numbers = ReadFloatFile(path.string(), param.loc, what, "(wavelength, value) pairs");
     FromPairs(numbers, param.loc, what);  // checks the pairs
     std::vector<Float> interleaved(numbers.begin(), numbers.end());
     return Spectrum::PiecewiseLinear(interleaved, false);  // end values held, as pbrt-v4 reads files
