@@ -58,7 +58,8 @@ void CheckResolution(const SceneEntity &e, Point2i resolution) {
 
 // Before the film allocates: the rendered pixels (those of pixelBounds inside the image; the
 // film rejects any others) must be countable in an int and fit the memory budget.
-void CheckFilmSize(const SceneEntity &e, Point2i resolution, Bounds2i pixelBounds) {
+// bands: the spectral film's, each 24 bytes a pixel.
+void CheckFilmSize(const SceneEntity &e, Point2i resolution, Bounds2i pixelBounds, int bands) {
     Bounds2i rendered = Intersect(pixelBounds, Bounds2i(Point2i(0, 0), resolution));
     int64_t width = std::max(0, rendered.pMax.x - rendered.pMin.x),
             height = std::max(0, rendered.pMax.y - rendered.pMin.y);
@@ -67,7 +68,8 @@ void CheckFilmSize(const SceneEntity &e, Point2i resolution, Bounds2i pixelBound
         throw ParseError(ResolutionLoc(e), fmt::format("{} are {} in all; expected at most {}",
                                                        what, width * height,
                                                        std::numeric_limits<int>::max()));
-    CheckMemory(ResolutionLoc(e), what, uint64_t(width * height) * kFilmBytesPerPixel);
+    CheckMemory(ResolutionLoc(e), what,
+                SaturatingProduct({uint64_t(width * height), kFilmBytesPerPixel + 24 * uint64_t(bands)}));
 }
 
 // The sampler constructors reject sample counts they cannot represent; the error goes where the
@@ -173,13 +175,28 @@ PixelSensor CreateSensor(const SceneEntity &e, Float exposureTime) {
     }
 }
 
+// The spectral film's bands: "nbuckets" (16), "lambdamin" (360) and "lambdamax" (830) nm, as
+// pbrt-v4 reads them; like pbrt-v4's it writes EXR only.
+struct SpectralBands {
+    Float lambdaMin = Lambda_min, lambdaMax = Lambda_max;
+    int count = 16;
+};
+
+SpectralBands ReadSpectralBands(const SceneEntity &e, const std::string &filename) {
+    const ParameterDictionary &p = e.parameters;
+    if (!IsEXRFilename(filename))
+        throw ParseError(e.loc, "Film \"spectral\" writes EXR only, not \"" + filename + "\"");
+    return {p.GetOneFloat("lambdamin", Lambda_min), p.GetOneFloat("lambdamax", Lambda_max),
+            p.GetOneInt("nbuckets", 16)};
+}
+
 RGBFilm CreateFilm(const SceneEntity &e, Float exposureTime, Filter filter,
                    const RenderOverrides &overrides) {
     const ParameterDictionary &p = e.parameters;
-    if (e.name == "gbuffer" || e.name == "spectral")
+    if (e.name == "gbuffer")
         Substitute(e, "Film", "\"rgb\" (its color output)");
-    else if (!e.name.empty() && e.name != "rgb")
-        throw ParseError(e.loc, "unknown Film \"" + e.name + "\": expected rgb");
+    else if (!e.name.empty() && e.name != "rgb" && e.name != "spectral")
+        throw ParseError(e.loc, "unknown Film \"" + e.name + "\": expected rgb, spectral or gbuffer");
     Point2i resolution(p.GetOneInt("xresolution", 1280), p.GetOneInt("yresolution", 720));
     if (overrides.resolution) resolution = *overrides.resolution;
     CheckResolution(e, resolution);
@@ -210,13 +227,21 @@ RGBFilm CreateFilm(const SceneEntity &e, Float exposureTime, Filter filter,
         throw ParseError(*p.Loc("diagonal"), fmt::format("\"diagonal\" {} mm is not positive", diagonal));
     p.GetOneBool("savefp16", true);
     Float maxComponent = p.GetOneFloat("maxcomponentvalue", Infinity);
-    if (e.name == "rgb" || e.name.empty())
+    std::optional<SpectralBands> bands;
+    if (e.name == "spectral") bands = ReadSpectralBands(e, filename);
+    if (e.name != "gbuffer")
         p.ReportUnused();
-    CheckFilmSize(e, resolution, pixelBounds);
-    return WithPixelBoundsLoc(e, overrides, [&] {
+    CheckFilmSize(e, resolution, pixelBounds, bands ? std::max(0, bands->count) : 0);
+    RGBFilm film = WithPixelBoundsLoc(e, overrides, [&] {
         return RGBFilm(resolution, pixelBounds, std::move(filter), filename, maxComponent, sensor,
                        &RGBColorSpace::sRGB(), diagonal / 1000);
     });
+    try {
+        if (bands) film.EnableSpectralBuckets(bands->lambdaMin, bands->lambdaMax, bands->count);
+    } catch (const std::invalid_argument &error) {
+        throw ParseError(e.loc, std::string("Film \"spectral\": ") + error.what());
+    }
+    return film;
 }
 
 Float ExposureTime(const CameraSceneEntity &e) {

@@ -76,6 +76,7 @@ void RGBFilm::AddSplat(Point2f pFilm, const SampledSpectrum &L, const SampledWav
             size_t index = PixelIndex(Point2i(splatBounds.pMin.x + i, splatBounds.pMin.y + j));
             for (int c = 0; c < 3; ++c)
                 splats[3 * index + c].Add(double(wt) * double(rgb[c]));
+            if (buckets) buckets->AddSplat(index, L, lambda, wt, maxComponentValue);
         }
 }
 
@@ -94,7 +95,11 @@ void RGBFilm::WriteImage(ImageMetadata metadata) const {
     metadata.fullResolution = fullResolution;
     metadata.pixelBounds = pixelBounds;
     metadata.colorSpace = colorSpace;
-    GetImage().Write(filename, metadata);
+    if (!buckets) return GetImage().Write(filename, metadata);
+    // pbrt-v4's spectral film's attributes (OpenEXR's spectral layout).
+    metadata.extra["spectralLayoutVersion"] = "1.0";
+    metadata.extra["emissiveUnits"] = "W.m^-2.sr^-1";
+    GetImage().Write(filename, metadata, buckets->Channels(splatScale));
 }
 
 std::string RGBFilm::ToString() const {

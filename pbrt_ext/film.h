@@ -16,6 +16,7 @@
 #include "pbrt_ext/filters.h"
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/sensor.h"
+#include "pbrt_ext/spectralbuckets.h"
 #include "pbrt_ext/util/bounds.h"
 #include "pbrt_ext/util/color.h"
 #include "pbrt_ext/util/colorspace.h"
@@ -60,8 +61,18 @@ class RGBFilm {
     // The output colour space's RGB of the sensor's (GetPixelRGB's last step).
     const SquareMatrix<3> &OutputRGBFromSensorRGB() const { return outputRGBFromSensorRGB; }
 
-    // The wavelengths a camera sample carries (pbrt-v4: visible-importance sampled).
-    SampledWavelengths SampleWavelengths(Float u) const { return SampledWavelengths::SampleVisible(u); }
+    // The wavelengths a camera sample carries (pbrt-v4: visible-importance sampled; uniform over
+    // the bands' range where the film has them).
+    SampledWavelengths SampleWavelengths(Float u) const {
+        return buckets ? buckets->SampleWavelengths(u) : SampledWavelengths::SampleVisible(u);
+    }
+    // pbrt-v4's spectral film: count bands of [lambdaMin, lambdaMax] nm beside the RGB, written
+    // as the EXR's spectral channels; before rendering. Throws std::invalid_argument for a
+    // range outside [360, 830] or no band.
+    void EnableSpectralBuckets(Float lambdaMin, Float lambdaMax, int count) {
+        buckets.emplace(lambdaMin, lambdaMax, count, pixels.size());
+    }
+    const SpectralBuckets *Buckets() const { return buckets ? &*buckets : nullptr; }
 
     // The sensor's RGB of L is scaled down, keeping its hue, so that no channel exceeds
     // maxComponentValue: a rare very bright path then costs bias instead of a firefly. weight
@@ -69,8 +80,9 @@ class RGBFilm {
     void AddSample(Point2i pPixel, const SampledSpectrum &L, const SampledWavelengths &lambda,
                    Float weight) {
         AddSensorRGB(pPixel, ClampedSensorRGB(L, lambda), weight);
+        if (buckets) buckets->AddSample(PixelIndex(pPixel), L, lambda, weight, maxComponentValue);
     }
-    // A sample already in the sensor's RGB (sppm's pixel estimates).
+    // A sample already in the sensor's RGB (sppm's pixel estimates; not into the bands).
     void AddSensorRGB(Point2i pPixel, RGB rgb, Float weight) {
         assert(InsideExclusive(pPixel, pixelBounds));
         Pixel &pixel = pixels[PixelIndex(pPixel)];
@@ -165,6 +177,7 @@ class RGBFilm {
     std::string filename;
     Float maxComponentValue;
     Float diagonal;
+    std::optional<SpectralBuckets> buckets;
     PixelSensor sensor;
     const RGBColorSpace *colorSpace;
     SquareMatrix<3> outputRGBFromSensorRGB;

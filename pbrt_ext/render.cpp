@@ -149,6 +149,9 @@ SampleRange SamplesToRender(const Scene &scene, const RenderOptions &options) {
     if (scene.integratorOptions.type == IntegratorType::SPPM)
         throw std::invalid_argument("sppm renders no sample range: each iteration narrows the "
                                     "radius the next one gathers photons in");
+    if (scene.film.Buckets())
+        throw std::invalid_argument("the spectral film renders no sample range: a slice keeps "
+                                    "the RGB film's sums only");
     return r;
 }
 

@@ -191,6 +191,10 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
                          "Integrator \"" + overrides.integrator.value_or(scene.integrator.name) +
                              "\" needs a perspective camera, not \"" + camera.Name() + "\"");
 
+    // sppm adds each pixel's estimate as RGB: it has no wavelengths for the bands.
+    if (integrator.type == IntegratorType::SPPM && film.Buckets())
+        throw ParseError(scene.film.loc, "Film \"spectral\" needs the radiance of camera samples; "
+                                         "sppm gives RGB estimates: use Film \"rgb\"");
     SceneBuilder builder(std::move(camera), std::move(film), std::move(sampler));
     builder.SetIntegrator(integrator);
     builder.SetLightSampler(lightSampler);
