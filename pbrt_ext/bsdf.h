@@ -51,6 +51,10 @@ class BSDF {
     }
 
     void Regularize() { bxdf.Regularize(); }
+    // The directional albedo toward woRender, estimated from the samples uc and u2.
+    SampledSpectrum rho(Vector3f woRender, pstd::span<const Float> uc, pstd::span<const Point2f> u2) const {
+        return bxdf.rho(RenderToLocal(woRender), uc, u2);
+    }
     std::string ToString() const { return "[ BSDF bxdf: " + bxdf.ToString() + " ]"; }
 
   private:

@@ -58,8 +58,9 @@ void CheckResolution(const SceneEntity &e, Point2i resolution) {
 
 // Before the film allocates: the rendered pixels (those of pixelBounds inside the image; the
 // film rejects any others) must be countable in an int and fit the memory budget.
-// bands: the spectral film's, each 24 bytes a pixel.
-void CheckFilmSize(const SceneEntity &e, Point2i resolution, Bounds2i pixelBounds, int bands) {
+// extraBytesPerPixel: the spectral film's bands' or the g-buffer's.
+void CheckFilmSize(const SceneEntity &e, Point2i resolution, Bounds2i pixelBounds,
+                   uint64_t extraBytesPerPixel) {
     Bounds2i rendered = Intersect(pixelBounds, Bounds2i(Point2i(0, 0), resolution));
     int64_t width = std::max(0, rendered.pMax.x - rendered.pMin.x),
             height = std::max(0, rendered.pMax.y - rendered.pMin.y);
@@ -69,7 +70,7 @@ void CheckFilmSize(const SceneEntity &e, Point2i resolution, Bounds2i pixelBound
                                                        what, width * height,
                                                        std::numeric_limits<int>::max()));
     CheckMemory(ResolutionLoc(e), what,
-                SaturatingProduct({uint64_t(width * height), kFilmBytesPerPixel + 24 * uint64_t(bands)}));
+                SaturatingProduct({uint64_t(width * height), kFilmBytesPerPixel + extraBytesPerPixel}));
 }
 
 // The sampler constructors reject sample counts they cannot represent; the error goes where the
@@ -190,12 +191,23 @@ SpectralBands ReadSpectralBands(const SceneEntity &e, const std::string &filenam
             p.GetOneInt("nbuckets", 16)};
 }
 
+// The g-buffer film's "coordinatesystem": true for "camera" (the default), false for "world";
+// like pbrt-v4's it writes EXR only.
+bool ReadGBufferSpace(const SceneEntity &e, const std::string &filename) {
+    const ParameterDictionary &p = e.parameters;
+    if (!IsEXRFilename(filename))
+        throw ParseError(e.loc, "Film \"gbuffer\" writes EXR only, not \"" + filename + "\"");
+    std::string space = p.GetOneString("coordinatesystem", "camera");
+    if (space != "camera" && space != "world")
+        throw ParseError(*p.Loc("coordinatesystem"), "unknown \"coordinatesystem\" \"" + space +
+                                                         "\": expected camera or world");
+    return space == "camera";
+}
+
 RGBFilm CreateFilm(const SceneEntity &e, Float exposureTime, Filter filter,
                    const RenderOverrides &overrides) {
     const ParameterDictionary &p = e.parameters;
-    if (e.name == "gbuffer")
-        Substitute(e, "Film", "\"rgb\" (its color output)");
-    else if (!e.name.empty() && e.name != "rgb" && e.name != "spectral")
+    if (!e.name.empty() && e.name != "rgb" && e.name != "spectral" && e.name != "gbuffer")
         throw ParseError(e.loc, "unknown Film \"" + e.name + "\": expected rgb, spectral or gbuffer");
     Point2i resolution(p.GetOneInt("xresolution", 1280), p.GetOneInt("yresolution", 720));
     if (overrides.resolution) resolution = *overrides.resolution;
@@ -229,13 +241,17 @@ RGBFilm CreateFilm(const SceneEntity &e, Float exposureTime, Filter filter,
     Float maxComponent = p.GetOneFloat("maxcomponentvalue", Infinity);
     std::optional<SpectralBands> bands;
     if (e.name == "spectral") bands = ReadSpectralBands(e, filename);
-    if (e.name != "gbuffer")
-        p.ReportUnused();
-    CheckFilmSize(e, resolution, pixelBounds, bands ? std::max(0, bands->count) : 0);
+    std::optional<bool> gbufferInCameraSpace;
+    if (e.name == "gbuffer") gbufferInCameraSpace = ReadGBufferSpace(e, filename);
+    p.ReportUnused();
+    CheckFilmSize(e, resolution, pixelBounds,
+                  (bands ? 24 * uint64_t(std::max(0, bands->count)) : 0) +
+                      (gbufferInCameraSpace ? GBufferChannels::BytesPerPixel() : 0));
     RGBFilm film = WithPixelBoundsLoc(e, overrides, [&] {
         return RGBFilm(resolution, pixelBounds, std::move(filter), filename, maxComponent, sensor,
                        &RGBColorSpace::sRGB(), diagonal / 1000);
     });
+    if (gbufferInCameraSpace) film.EnableGBuffer(*gbufferInCameraSpace);
     try {
         if (bands) film.EnableSpectralBuckets(bands->lambdaMin, bands->lambdaMax, bands->count);
     } catch (const std::invalid_argument &error) {

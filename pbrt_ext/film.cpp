@@ -95,11 +95,19 @@ void RGBFilm::WriteImage(ImageMetadata metadata) const {
     metadata.fullResolution = fullResolution;
     metadata.pixelBounds = pixelBounds;
     metadata.colorSpace = colorSpace;
-    if (!buckets) return GetImage().Write(filename, metadata);
-    // pbrt-v4's spectral film's attributes (OpenEXR's spectral layout).
-    metadata.extra["spectralLayoutVersion"] = "1.0";
-    metadata.extra["emissiveUnits"] = "W.m^-2.sr^-1";
-    GetImage().Write(filename, metadata, buckets->Channels(splatScale));
+    std::vector<ImageExtraChannel> channels;
+    if (buckets) {
+        // pbrt-v4's spectral film's attributes (OpenEXR's spectral layout).
+        metadata.extra["spectralLayoutVersion"] = "1.0";
+        metadata.extra["emissiveUnits"] = "W.m^-2.sr^-1";
+        channels = buckets->Channels(splatScale);
+    }
+    if (gbuffer) {
+        std::vector<double> weightSums(pixels.size());
+        for (size_t i = 0; i < pixels.size(); ++i) weightSums[i] = pixels[i].weightSum;
+        channels = gbuffer->Channels(weightSums);
+    }
+    GetImage().Write(filename, metadata, channels);
 }
 
 std::string RGBFilm::ToString() const {

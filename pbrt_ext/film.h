@@ -14,6 +14,7 @@
 #pragma once
 
 #include "pbrt_ext/filters.h"
+#include "pbrt_ext/gbuffer.h"
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/sensor.h"
 #include "pbrt_ext/spectralbuckets.h"
@@ -73,14 +74,22 @@ class RGBFilm {
         buckets.emplace(lambdaMin, lambdaMax, count, pixels.size());
     }
     const SpectralBuckets *Buckets() const { return buckets ? &*buckets : nullptr; }
+    // pbrt-v4's g-buffer film: geometric channels beside the RGB, from the VisibleSurface each
+    // camera sample passes to AddSample; before rendering.
+    void EnableGBuffer(bool cameraSpace) { gbuffer.emplace(pixels.size(), cameraSpace); }
+    const GBufferChannels *GBuffer() const { return gbuffer ? &*gbuffer : nullptr; }
 
     // The sensor's RGB of L is scaled down, keeping its hue, so that no channel exceeds
     // maxComponentValue: a rare very bright path then costs bias instead of a firefly. weight
     // is the filter sample's.
+    // visibleSurface: what the sample's camera ray saw, for the g-buffer (none: a miss).
     void AddSample(Point2i pPixel, const SampledSpectrum &L, const SampledWavelengths &lambda,
-                   Float weight) {
-        AddSensorRGB(pPixel, ClampedSensorRGB(L, lambda), weight);
+                   Float weight, const VisibleSurface *visibleSurface = nullptr) {
+        RGB rgb = ClampedSensorRGB(L, lambda);
+        AddSensorRGB(pPixel, rgb, weight);
         if (buckets) buckets->AddSample(PixelIndex(pPixel), L, lambda, weight, maxComponentValue);
+        if (gbuffer && visibleSurface)
+            gbuffer->Add(PixelIndex(pPixel), rgb, weight, *visibleSurface, lambda, *colorSpace);
     }
     // A sample already in the sensor's RGB (sppm's pixel estimates; not into the bands).
     void AddSensorRGB(Point2i pPixel, RGB rgb, Float weight) {
@@ -178,6 +187,7 @@ class RGBFilm {
     Float maxComponentValue;
     Float diagonal;
     std::optional<SpectralBuckets> buckets;
+    std::optional<GBufferChannels> gbuffer;
     PixelSensor sensor;
     const RGBColorSpace *colorSpace;
     SquareMatrix<3> outputRGBFromSensorRGB;

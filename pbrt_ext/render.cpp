@@ -99,7 +99,12 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
                 ++counts.discarded;
                 continue;
             }
-            scene.film.AddSample(p, L, lambda, cs.filterWeight);
+            std::optional<VisibleSurface> visible;
+            if (cr && scene.film.GBuffer()) {
+                ++counts.rays.closest;
+                visible = scene.FirstVisibleSurface(cr->ray, lambda);
+            }
+            scene.film.AddSample(p, L, lambda, cs.filterWeight, visible ? &*visible : nullptr);
         }
 }
 
@@ -149,9 +154,9 @@ SampleRange SamplesToRender(const Scene &scene, const RenderOptions &options) {
     if (scene.integratorOptions.type == IntegratorType::SPPM)
         throw std::invalid_argument("sppm renders no sample range: each iteration narrows the "
                                     "radius the next one gathers photons in");
-    if (scene.film.Buckets())
-        throw std::invalid_argument("the spectral film renders no sample range: a slice keeps "
-                                    "the RGB film's sums only");
+    if (scene.film.Buckets() || scene.film.GBuffer())
+        throw std::invalid_argument("the spectral and g-buffer films render no sample range: a "
+                                    "slice keeps the RGB film's sums only");
     return r;
 }
 

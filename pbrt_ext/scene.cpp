@@ -174,11 +174,46 @@ void SceneBuilder::SetLightSampler(std::string name) {
     lightSamplerName = std::move(name);
 }
 
+std::optional<VisibleSurface> Scene::FirstVisibleSurface(RayDifferential ray,
+                                                         SampledWavelengths lambda) const {
+    for (;;) {
+        pstd::optional<ShapeIntersection> hit = Intersect(ray);
+        if (!hit) return std::nullopt;
+        SurfaceInteraction &si = hit->intr;
+        ComputeDifferentials(si, ray);
+        std::optional<BSDF> bsdf = GetBSDF(si, lambda);
+        if (!bsdf) {  // an interface between media: what lies behind it is seen
+            ray = si.SpawnRay(ray.d);
+            continue;
+        }
+        // The albedo from 16 stratified directions.
+        std::array<Float, 16> uc;
+        std::array<Point2f, 16> u2;
+        for (int i = 0; i < 16; ++i) {
+            uc[size_t(i)] = (i * 7 % 16 + 0.5f) / 16;
+            u2[size_t(i)] = Point2f((i % 4 + 0.5f) / 4, (i / 4 + 0.5f) / 4);
+        }
+        // Camera space through the inverse the camera's transform keeps.
+        Transform worldFromOutput;
+        if (film.GBuffer()->CameraSpace()) worldFromOutput = camera.WorldFromCamera(si.time);
+        VisibleSurface v;
+        v.p = worldFromOutput.ApplyInverse(si.p);
+        v.n = worldFromOutput.ApplyInverse(FaceForward(si.n, si.wo));
+        v.ns = worldFromOutput.ApplyInverse(FaceForward(si.shading.n, si.wo));
+        v.uv = si.uv;
+        v.dpdx = worldFromOutput.ApplyInverse(si.dpdx);
+        v.dpdy = worldFromOutput.ApplyInverse(si.dpdy);
+        v.albedo = bsdf->rho(si.wo, uc, u2);
+        return v;
+    }
+}
+
 std::unique_ptr<Scene> SceneBuilder::Build() {
     scene->aggregate.Commit();
     scene->hasMotion = scene->camera.IsMoving() || scene->aggregate.HasMotion();
     for (const Material &m : scene->materials)
         scene->usesRayDifferentials |= m.UsesRayDifferentials();
+    scene->usesRayDifferentials |= scene->film.GBuffer() != nullptr;  // its dzdx and dzdy
     if (scene->usesRayDifferentials)
         scene->cameraDifferentials =
             CameraDifferentials(scene->camera, scene->film.FullResolution());

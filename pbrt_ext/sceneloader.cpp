@@ -191,10 +191,11 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
                          "Integrator \"" + overrides.integrator.value_or(scene.integrator.name) +
                              "\" needs a perspective camera, not \"" + camera.Name() + "\"");
 
-    // sppm adds each pixel's estimate as RGB: it has no wavelengths for the bands.
-    if (integrator.type == IntegratorType::SPPM && film.Buckets())
-        throw ParseError(scene.film.loc, "Film \"spectral\" needs the radiance of camera samples; "
-                                         "sppm gives RGB estimates: use Film \"rgb\"");
+    // sppm adds each pixel's estimate as RGB: it has no wavelengths for the bands, nor camera
+    // samples for the g-buffer.
+    if (integrator.type == IntegratorType::SPPM && (film.Buckets() || film.GBuffer()))
+        throw ParseError(scene.film.loc, "Film \"" + scene.film.name + "\" needs the radiance of "
+                                         "camera samples; sppm gives RGB estimates: use Film \"rgb\"");
     SceneBuilder builder(std::move(camera), std::move(film), std::move(sampler));
     builder.SetIntegrator(integrator);
     builder.SetLightSampler(lightSampler);

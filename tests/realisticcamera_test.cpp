@@ -9,6 +9,8 @@
 #include "pbrt_ext/util/error.h"
 #include "pbrt_ext/util/floatfile.h"
 
+#include "scenefolder.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -199,19 +201,13 @@ TEST(ApertureShape, AnImagesTopRowIsTheStopsPlusY) {
 // A scene with the realistic camera, in a fresh folder with lens.dat holding lensText.
 std::string LoadError(const std::string &cameraParameters, const std::string &lensText,
                       const std::string &film = "") {
-    std::filesystem::path dir = std::filesystem::temp_directory_path() / "pbrt_ext_realistic_test";
-    std::filesystem::create_directories(dir);
+    std::filesystem::path dir = TestFolder("pbrt_ext_realistic_test");
     std::ofstream(dir / "lens.dat") << lensText;
     std::filesystem::path scene = dir / "scene.pbrt";
     std::ofstream(scene) << "Camera \"realistic\" " << cameraParameters << "\n"
                          << "Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 8 "
                          << film << "\nWorldBegin\n";
-    try {
-        LoadScene(scene.string(), RenderOverrides{});
-    } catch (const ParseError &e) {
-        return std::string(e.what()).substr(scene.string().size());
-    }
-    return "no error";
+    return LoadErrorAfterPath(scene.string());
 }
 
 TEST(RealisticCamera, BadLensInputIsAnErrorAtItsParameter) {

@@ -9,6 +9,8 @@
 #include "pbrt_ext/util/ciedata.h"
 #include "pbrt_ext/util/error.h"
 
+#include "scenefolder.h"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -86,11 +88,7 @@ TEST(SpectralBuckets, SplatsEstimateEachBandsAverage) {
                     0.03f * 0.5f * CIE_Y_integral) << band;
 }
 
-std::filesystem::path Folder() {
-    std::filesystem::path dir = std::filesystem::temp_directory_path() / "pbrt_ext_spectralfilm_test";
-    std::filesystem::create_directories(dir);
-    return dir;
-}
+std::filesystem::path Folder() { return TestFolder("pbrt_ext_spectralfilm_test"); }
 
 std::string WriteScene(const std::string &film, const std::string &rest = "") {
     std::filesystem::path scene = Folder() / "scene.pbrt";
@@ -125,13 +123,7 @@ TEST(SpectralFilm, ConstantSkyGivesOneInEveryBand) {
 }
 
 std::string LoadError(const std::string &film, const std::string &rest = "") {
-    std::string scene = WriteScene(film, rest);
-    try {
-        LoadScene(scene, RenderOverrides{});
-    } catch (const ParseError &e) {
-        return std::string(e.what()).substr(scene.size());
-    }
-    return "no error";
+    return LoadErrorAfterPath(WriteScene(film, rest));
 }
 
 TEST(SpectralFilm, BadParametersAreErrorsAtTheFilm) {

@@ -46,6 +46,9 @@ class BxDF {
     void Regularize() {
         std::visit([](auto &b) { b.Regularize(); }, bxdf);
     }
+    SampledSpectrum rho(Vector3f wo, pstd::span<const Float> uc, pstd::span<const Point2f> u2) const {
+        return std::visit([&](const auto &b) { return b.rho(wo, uc, u2); }, bxdf);
+    }
     std::string ToString() const {
         return std::visit([](const auto &b) { return b.ToString(); }, bxdf);
     }
