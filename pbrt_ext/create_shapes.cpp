@@ -3,6 +3,7 @@
 #include "pbrt_ext/create.h"
 
 #include "pbrt_ext/curves.h"
+#include "pbrt_ext/meshdisplacement.h"
 
 #include "pbrt_ext/util/error.h"
 #include "pbrt_ext/util/loopsubdiv.h"
@@ -89,23 +90,47 @@ void AddTriangleMesh(SceneBuilder &builder, const ShapeSceneEntity &e,
     builder.AddTriangleMesh(std::move(mesh), a.material, a.emission, a.alpha);
 }
 
+// pbrt-v4's "displacement" (a float texture) over edges refined below "edgelength"
+// (meshdisplacement.h). pbrt-v4 gives the texture each vertex's object-space point as if it were
+// a point of its render space, the world moved to put the camera at the origin; a 3D texture is
+// then looked up at the object-space point plus the camera's position, and so it is here.
+PlyMesh Displaced(const ShapeSceneEntity &e, PlyMesh ply, TextureResolver &textures,
+                  Vector3f cameraPosition) {
+    const ParameterDictionary &p = e.parameters;
+    FloatTexture displacement = textures.Float(p, "displacement", 0);
+    Float edgeLength = p.GetOneFloat("edgelength", 1);
+    // A vertex (p, n, uv), three indices and what the mesh and Embree keep per triangle.
+    constexpr uint64_t kBytesPerTriangle = 128;
+    try {
+        return DisplaceMesh(std::move(ply), e.worldFromObject, edgeLength,
+                            MemoryBudget() / kBytesPerTriangle, [&](Point3f pObject, Point2f uv) {
+                                TextureEvalContext ctx;
+                                ctx.p = pObject + cameraPosition;
+                                ctx.uv = uv;
+                                return displacement.Evaluate(ctx);
+                            });
+    } catch (const std::invalid_argument &error) {
+        throw ParseError(*p.Loc("displacement"), error.what());
+    }
+}
+
 void AddPlyMesh(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearance &a,
-                const std::string &folder) {
+                TextureResolver &textures) {
     const ParameterDictionary &p = e.parameters;
     std::string filename = p.GetOneString("filename", "");
     if (filename.empty())
         throw ParseError(e.loc, "plymesh needs \"string filename\"");
-    if (p.HasParameter("displacement")) {
-        p.GetTexture("displacement");
-        p.GetOneFloat("edgelength", 1);
-        WarningAt(*p.Loc("displacement"), "plymesh displacement is not supported: ignored");
-    }
-    p.ReportUnused();
-    std::string path = ResolvePath(folder, filename);
+    bool displaced = p.HasParameter("displacement");
+    if (!displaced) p.GetOneFloat("edgelength", 1);  // read by pbrt-v4 whether or not it displaces
+    std::string path = ResolvePath(textures.Folder(), filename);
     if (!std::filesystem::is_regular_file(path))
         throw ParseError(*p.Loc("filename"), "cannot open PLY file \"" + filename +
                                                  "\" (looked for " + path + ")");
     PlyMesh ply = ReadPly(path);
+    if (displaced)
+        ply = Displaced(e, std::move(ply), textures,
+                        Vector3f(builder.GetCamera().WorldFromCamera()(Point3f(0, 0, 0))));
+    p.ReportUnused();
     CheckPrimitives(e, a, ply.triIndices.size() / 3);
     CheckPrimitives(e, a, ply.quadIndices.size() / 4);
     bool hasQuads = !ply.quadIndices.empty();
@@ -283,7 +308,7 @@ void AddShape(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
     if (e.name == "trianglemesh")
         return AddTriangleMesh(builder, e, a);
     if (e.name == "plymesh")
-        return AddPlyMesh(builder, e, a, textures.Folder());
+        return AddPlyMesh(builder, e, a, textures);
     if (e.name == "bilinearmesh")
         return AddBilinearMesh(builder, e, a, textures.Folder());
     if (e.name == "cylinder")

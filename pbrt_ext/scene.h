@@ -135,6 +135,7 @@ class SceneBuilder {
   public:
     SceneBuilder(Camera camera, RGBFilm film, Sampler sampler);
 
+    const Camera &GetCamera() const { return scene->camera; }
     // Materials are referenced by the index this returns.
     int AddMaterial(Material material);
 

@@ -15,6 +15,9 @@ derives from uv: u runs along the cloth's grid rows, so the threads follow the w
                 at the origin
   cylinder.ply  an open cylinder of radius 1 from z = 0 to 1 with pbrt-v4's cylinder uv
                 (u = phi / 2pi, v = z), a mesh stand-in for Shape "cylinder"
+  tile.ply      a coarse square of 4 x 4 cells, 2 x 2 units at z = 0, for displacement to refine
+  ball.ply      a coarse sphere of radius 0.5 (12 segments, 6 rings) with latitude-longitude uv, for
+                displacement to refine
 """
 import os
 import sys
@@ -151,12 +154,30 @@ def cylinder():
     return p, n, uv, grid_triangles(CYLINDER_SEGMENTS, CYLINDER_RINGS)
 
 
+def tile():
+    v, u = np.meshgrid(np.linspace(0, 1, 5), np.linspace(0, 1, 5), indexing="ij")
+    uv = np.stack([u, v], -1).reshape(-1, 2)
+    p = np.stack([2 * u - 1, 2 * v - 1, np.zeros_like(u)], -1).reshape(-1, 3)
+    n = np.tile([0.0, 0.0, 1.0], (len(p), 1))
+    return p, n, uv, grid_triangles(4, 4)
+
+
+def ball():
+    v, u = np.meshgrid(np.linspace(0, 1, 7), np.linspace(0, 1, 13), indexing="ij")
+    theta, phi = np.pi * (1 - v), 2 * np.pi * u
+    n = np.stack([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)], -1).reshape(-1, 3)
+    uv = np.stack([u, v], -1).reshape(-1, 2)
+    return 0.5 * n, n, uv, grid_triangles(12, 6)
+
+
 def main(out_dir):
     os.makedirs(out_dir, exist_ok=True)
     rng = np.random.default_rng(SEED)
     write_ply(os.path.join(out_dir, "cloth.ply"), *cloth(rng))
     write_ply(os.path.join(out_dir, "pillow.ply"), *pillow(rng))
     write_ply(os.path.join(out_dir, "cylinder.ply"), *cylinder())
+    write_ply(os.path.join(out_dir, "tile.ply"), *tile())
+    write_ply(os.path.join(out_dir, "ball.ply"), *ball())
 
 
 if __name__ == "__main__":
