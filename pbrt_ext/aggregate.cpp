@@ -90,15 +90,19 @@ Float HashFloat(Args... args) {
     return Float(uint32_t(Hash(args...))) * 0x1p-32f;
 }
 
-// pbrt-v4's alpha test of a hit at distance t along the ray (o, d), both in the geometry's own
-// space. pbrt-v4 follows a rejected hit with a new ray from it, hashed anew; hashing t with the
-// ray gives each hit along one ray its own decision in the same way, so that stacked cut-outs
-// are independent.
-bool AlphaKeeps(const FloatTexture &alpha, const SurfaceInteraction &si, const Ray &ray, Float t) {
+// pbrt-v4's alpha test of a hit, with u the hit's uniform number. pbrt-v4 follows a rejected hit
+// with a new ray from it, hashed anew; hashing the hit's distance t with the ray (o, d, in the
+// geometry's own space) gives each hit along one ray its own decision in the same way, so that
+// stacked cut-outs are independent.
+bool AlphaKeeps(const FloatTexture &alpha, const SurfaceInteraction &si, Float u) {
     Float a = alpha.Evaluate(TextureEvalContext(si));
     if (a >= 1)
         return true;
-    return a > 0 && HashFloat(ray.o, ray.d, t) <= a;
+    return a > 0 && u <= a;
+}
+
+bool AlphaKeeps(const FloatTexture &alpha, const SurfaceInteraction &si, const Ray &ray, Float t) {
+    return AlphaKeeps(alpha, si, HashFloat(ray.o, ray.d, t));
 }
 
 // What Embree's callbacks for one geometry read through its user pointer.
@@ -116,21 +120,39 @@ std::array<Float, 3> Barycentrics(const RTCHit &hit) {
     return {1 - hit.u - hit.v, hit.u, hit.v};
 }
 
-// Triangle meshes with alpha only: Embree calls this for every candidate hit of closest-hit and
-// shadow queries alike, and skips the candidates it marks invalid.
-void TriangleAlphaFilter(const RTCFilterFunctionNArguments *args) {
+// Embree calls a geometry's filter for every candidate hit of closest-hit and shadow queries
+// alike, and skips the candidates it marks invalid; keeps(data, ray, its RTCRay, hit) is the
+// alpha test's decision.
+template <typename Keeps>
+void AlphaFilter(const RTCFilterFunctionNArguments *args, Keeps keeps) {
     assert(args->N == 1);
     if (!args->valid[0])
         return;
-    const CallbackData &data = DataOf(args->geometryUserPtr);
     const RTCRay &r = *reinterpret_cast<const RTCRay *>(args->ray);
     const RTCHit &hit = *reinterpret_cast<const RTCHit *>(args->hit);
-    Ray ray = RayFrom(r);
-    SurfaceInteraction si = Triangle::InteractionFromIntersection(
-        static_cast<const TriangleMesh *>(data.shape), int(hit.primID), Barycentrics(hit),
-        -Normalize(ray.d));
-    if (!AlphaKeeps(*data.alpha, si, ray, r.tfar))  // tfar is the candidate's distance
+    if (!keeps(DataOf(args->geometryUserPtr), RayFrom(r), r, hit))
         args->valid[0] = 0;
+}
+
+// Triangle meshes with alpha only.
+void TriangleAlphaFilter(const RTCFilterFunctionNArguments *args) {
+    AlphaFilter(args, [](const CallbackData &data, const Ray &ray, const RTCRay &r, const RTCHit &hit) {
+        SurfaceInteraction si = Triangle::InteractionFromIntersection(
+            static_cast<const TriangleMesh *>(data.shape), int(hit.primID), Barycentrics(hit),
+            -Normalize(ray.d));
+        return AlphaKeeps(*data.alpha, si, ray, r.tfar);  // tfar is the candidate's distance
+    });
+}
+
+// Curves with alpha only: the same test at the curve's (u, v) and point (pbrt-v4 tests every
+// shape's hits alike). pbrt-v4's curves are strips facing the ray, crossed once; a round curve
+// is crossed twice, so both of its hits share one decision, hashed from the ray and segment.
+void CurveAlphaFilter(const RTCFilterFunctionNArguments *args) {
+    AlphaFilter(args, [](const CallbackData &data, const Ray &ray, const RTCRay &r, const RTCHit &hit) {
+        SurfaceInteraction si = CurveInteraction(*static_cast<const CurveMesh *>(data.shape),
+                                                 int(hit.primID), hit.u, ray, r.tfar);
+        return AlphaKeeps(*data.alpha, si, HashFloat(ray.o, ray.d, hit.primID));
+    });
 }
 
 // How many times a ray can cross the quadric: the alpha test looks no further.
@@ -428,6 +450,18 @@ struct EmbreeAggregate::Impl {
         return TransformInteraction(worldFromInstance, Interaction(g, rh, wo, local));
     }
 
+    // Only geometry with alpha pays for a filter call per candidate hit.
+    void SetAlphaFilter(RTCGeometry geom, const void *shape, const PrimitiveAttributes &attrs,
+                        RTCFilterFunctionN filter) {
+        if (!attrs.alpha) return;
+        if (!rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED))
+            throw std::runtime_error("Embree was built without filter functions: alpha cut-outs "
+                                     "on meshes and curves need them");
+        rtcSetGeometryUserData(geom, NewCallbackData(shape, attrs));
+        rtcSetGeometryIntersectFilterFunction(geom, filter);
+        rtcSetGeometryOccludedFilterFunction(geom, filter);
+    }
+
     void Check(const char *what) const {
         RTCError code = rtcGetDeviceError(device);
         if (code != RTC_ERROR_NONE)
@@ -492,15 +526,7 @@ int EmbreeAggregate::AddTriangleMesh(std::shared_ptr<const TriangleMesh> mesh,
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                mesh->indices.data(), 0, 3 * sizeof(unsigned),
                                size_t(mesh->NumTriangles()));
-    // Only meshes with alpha pay for a filter call per candidate hit.
-    if (attrs.alpha) {
-        if (!rtcGetDeviceProperty(impl->device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED))
-            throw std::runtime_error("Embree was built without filter functions: alpha cut-outs "
-                                     "on triangle meshes need them");
-        rtcSetGeometryUserData(geom, impl->NewCallbackData(mesh.get(), attrs));
-        rtcSetGeometryIntersectFilterFunction(geom, TriangleAlphaFilter);
-        rtcSetGeometryOccludedFilterFunction(geom, TriangleAlphaFilter);
-    }
+    impl->SetAlphaFilter(geom, mesh.get(), attrs, TriangleAlphaFilter);
     impl->triangleMeshes.push_back(mesh);
     return impl->Attach(geom, {GeometryKind::Triangles, mesh.get(), attrs});
 }
@@ -549,8 +575,8 @@ int EmbreeAggregate::AddCurves(std::shared_ptr<const CurveMesh> curves,
             }
     }
     rtcSetGeometryTessellationRate(geom, FlatCurveTessellation(*curves));
+    impl->SetAlphaFilter(geom, curves.get(), attrs, CurveAlphaFilter);
     impl->curveMeshes.push_back(curves);
-    attrs.alpha.reset();
     attrs.areaLightBase = -1;
     return impl->Attach(geom, {GeometryKind::Curves, curves.get(), attrs});
 }

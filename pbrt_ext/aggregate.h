@@ -64,8 +64,7 @@ class EmbreeAggregate {
     int AddTriangleMesh(std::shared_ptr<const TriangleMesh> mesh, PrimitiveAttributes attrs);
     int AddBilinearPatchMesh(std::shared_ptr<const BilinearPatchMesh> mesh,
                              PrimitiveAttributes attrs);
-    // Curves are Embree's curve primitives (curves.h); their attributes carry no alpha and no
-    // area light.
+    // Curves are Embree's curve primitives (curves.h); their attributes carry no area light.
     int AddCurves(std::shared_ptr<const CurveMesh> curves, PrimitiveAttributes attrs);
     int AddSphere(const Sphere &sphere, PrimitiveAttributes attrs);
     int AddCylinder(const Cylinder &cylinder, PrimitiveAttributes attrs);

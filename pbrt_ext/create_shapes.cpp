@@ -214,7 +214,7 @@ CurveType CurveTypeFrom(const ParameterDictionary &p) {
 }
 
 // pbrt-v4's curve, with its parameters; "splitdepth" is read and has no use (Embree refines
-// curves itself). Curves do not emit and have no alpha (pbrt-v4 cannot sample them as lights).
+// curves itself). Curves do not emit (pbrt-v4 cannot sample them as lights).
 void AddCurve(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearance &a) {
     const ParameterDictionary &p = e.parameters;
     CurveDescription curve;
@@ -234,14 +234,12 @@ void AddCurve(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearance
     }
     if (a.emission)
         WarningAt(e.loc, "curves do not emit (as in pbrt-v4): the area light is ignored");
-    if (a.alpha)
-        WarningAt(*p.Loc("alpha"), "alpha is not supported on curves: ignored");
     CheckPrimitives(e, {a.material, {}, {}}, curve.p.size());
     auto mesh = AtShape(e, [&] {
         return std::make_shared<CurveMesh>(
             MakeCurveMesh(e.worldFromObject, e.reverseOrientation, curve));
     });
-    builder.AddCurves(std::move(mesh), a.material);
+    builder.AddCurves(std::move(mesh), a.material, a.alpha);
 }
 
 // pbrt-v4's loopsubdiv: the control mesh refined `levels` times, as a triangle mesh with the

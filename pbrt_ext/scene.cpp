@@ -67,8 +67,9 @@ void SceneBuilder::AddBilinearPatchMesh(std::shared_ptr<BilinearPatchMesh> mesh,
     scene->aggregate.AddBilinearPatchMesh(std::move(mesh), attributes);
 }
 
-void SceneBuilder::AddCurves(std::shared_ptr<CurveMesh> curves, int material) {
-    scene->aggregate.AddCurves(std::move(curves), Attributes(material, {}));
+void SceneBuilder::AddCurves(std::shared_ptr<CurveMesh> curves, int material,
+                             std::optional<FloatTexture> alpha) {
+    scene->aggregate.AddCurves(std::move(curves), Attributes(material, std::move(alpha)));
 }
 
 template <typename Quadric, typename AddToAggregate>

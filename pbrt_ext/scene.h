@@ -152,7 +152,8 @@ class SceneBuilder {
                    std::optional<AreaLightDescription> emission = {},
                    std::optional<FloatTexture> alpha = {});
     // Curves neither emit nor take alpha (pbrt-v4 cannot sample them as lights either).
-    void AddCurves(std::shared_ptr<CurveMesh> curves, int material);
+    void AddCurves(std::shared_ptr<CurveMesh> curves, int material,
+                   std::optional<FloatTexture> alpha = {});
     void AddCylinder(const Cylinder &cylinder, int material,
                      std::optional<AreaLightDescription> emission = {},
                      std::optional<FloatTexture> alpha = {});

@@ -1,8 +1,10 @@
 // Alpha cut-outs (pbrt-v4's "alpha" shape parameter): alpha 0 removes a shape for closest-hit and
 // shadow rays, alpha 1 changes nothing, a fractional alpha keeps a hit with that probability
 // (independently for every surface along a ray), a texture cuts holes where it is 0, and the
-// scene loader wires "float alpha" and "texture alpha" through to the aggregate.
+// scene loader wires "float alpha" and "texture alpha" through to the aggregate. Curves are cut
+// out too, each crossing of a round curve once.
 #include "pbrt_ext/aggregate.h"
+#include "pbrt_ext/curves.h"
 #include "pbrt_ext/render.h"
 #include "pbrt_ext/sceneloader.h"
 
@@ -114,6 +116,35 @@ TEST(Alpha, HalfIsHitAboutHalfTheTimeByBothQueries) {
         EXPECT_NEAR(shadow, 0.5, kTolerance) << x0;
         // The decision is a function of the ray: both queries agree on every ray.
         for (const Ray &r : rays) EXPECT_EQ(bool(agg.Intersect(r)), agg.IntersectP(r));
+    }
+}
+
+// A straight round curve along x at height 1, 0.4 wide, under rays across its middle.
+std::shared_ptr<const CurveMesh> Curve() {
+    CurveDescription d;
+    d.p = {Point3f(0, 0, 1), Point3f(1 / 3.f, 0, 1), Point3f(2 / 3.f, 0, 1), Point3f(1, 0, 1)};
+    d.type = CurveType::Cylinder;
+    d.width0 = d.width1 = 0.4f;
+    return std::make_shared<const CurveMesh>(MakeCurveMesh(Transform(), false, d));
+}
+
+std::vector<Ray> AcrossTheCurve() {
+    std::vector<Ray> rays;
+    for (int i = 0; i < kGrid; ++i)
+        for (int j = 0; j < 20; ++j) rays.push_back(Down(0.1f + 0.8f * (i + 0.5f) / kGrid, -0.1f + 0.2f * (j + 0.5f) / 20));
+    return rays;
+}
+
+TEST(Alpha, CurvesAreCutOutLikeEveryOtherShape) {
+    std::vector<Ray> rays = AcrossTheCurve();
+    for (float alpha : {0.f, 0.5f, 1.f}) {
+        EmbreeAggregate agg;
+        agg.AddCurves(Curve(), WithAlpha(FloatTexture(alpha)));
+        agg.Commit();
+        double closest = HitFraction(rays, [&](const Ray &r) { return bool(agg.Intersect(r)); });
+        double shadow = HitFraction(rays, [&](const Ray &r) { return agg.IntersectP(r); });
+        EXPECT_NEAR(closest, alpha, kTolerance) << alpha;
+        EXPECT_NEAR(shadow, alpha, kTolerance) << alpha;
     }
 }
 
