@@ -104,7 +104,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                          "motion-blur.pbrt", "fabric-woven.pbrt",
                                          "hair-fur.pbrt", "fabric-textured.pbrt",
                                          "procedural-textures.pbrt",
-                                         "lights-images.pbrt", "portal-skylight.pbrt"));
+                                         "lights-images.pbrt", "portal-skylight.pbrt",
+                                         "realistic-camera.pbrt", "spectral-film.pbrt",
+                                         "gbuffer-film.pbrt", "displacement.pbrt"));
 
 // Curves of each type with hair, a moving cylinder, a moving spherical camera, a bump map (ray
 // differentials), tangents S and a subdivision surface, all in one scene (also a fuzz seed).
