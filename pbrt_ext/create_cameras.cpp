@@ -71,6 +71,12 @@ std::vector<LensElementInterface> ReadLens(const ParameterDictionary &p, const F
     if (values.empty() || values.size() % 4 != 0)
         throw ParseError(loc, fmt::format("{} has {} values, expected {}", what, values.size(),
                                           expected));
+    // Finding the exit pupils traces 2^26 rays through every interface: bound the work.
+    constexpr size_t kMaxInterfaces = 256;
+    if (values.size() / 4 > kMaxInterfaces)
+        throw ParseError(loc, fmt::format("{} has {} element interfaces; expected at most {} (lens "
+                                          "designs have a few dozen)", what, values.size() / 4,
+                                          kMaxInterfaces));
     Float stopDiameter = p.GetOneFloat("aperturediameter", 1);
     if (!(stopDiameter > 0))
         throw ParseError(*p.Loc("aperturediameter"),

@@ -223,6 +223,10 @@ TEST(RealisticCamera, BadLensInputIsAnErrorAtItsParameter) {
                 testing::HasSubstr("has 14 values, expected rows of curvature radius"));
     EXPECT_THAT(LoadError("\"string lensfile\" \"lens.dat\"", "0 -1 0 10\n"),
                 testing::HasSubstr("row 1: thickness -1"));
+    std::string longLens;
+    for (int i = 0; i < 257; ++i) longLens += "100 1 1.5 20\n";
+    EXPECT_THAT(LoadError("\"string lensfile\" \"lens.dat\"", longLens),
+                testing::HasSubstr("has 257 element interfaces; expected at most 256"));
     EXPECT_THAT(LoadError("\"string lensfile\" \"lens.dat\" \"float aperturediameter\" 0", lens),
                 testing::StartsWith(":1:49: error: \"aperturediameter\" 0 is not positive"));
     EXPECT_THAT(LoadError("\"string lensfile\" \"lens.dat\" \"float focusdistance\" -2", lens),
