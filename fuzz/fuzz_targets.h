@@ -39,6 +39,8 @@ void FuzzScene(std::span<const uint8_t> data);
 void FuzzNanoVDB(std::span<const uint8_t> data);
 // A film slice's EXR (FilmSlice::Read), merged with itself moved past its own samples.
 void FuzzSlice(std::span<const uint8_t> data);
+// A lens description made into a RealisticCamera, and rays through it (lens_target.cpp).
+void FuzzLens(std::span<const uint8_t> data);
 
 struct FuzzTarget {
     std::string_view name;  // as scripts/fuzz and tests/data/fuzz/<name>/ call it
@@ -49,6 +51,6 @@ struct FuzzTarget {
 inline constexpr FuzzTarget kFuzzTargets[] = {
     {"parser", FuzzParser}, {"ply", FuzzPly},     {"image", FuzzImage}, {"pngexr", FuzzPngExr},
     {"stb", FuzzStb},       {"fabric", FuzzFabric}, {"scene", FuzzScene},
-    {"nanovdb", FuzzNanoVDB}, {"slice", FuzzSlice}};
+    {"nanovdb", FuzzNanoVDB}, {"slice", FuzzSlice}, {"lens", FuzzLens}};
 
 }  // namespace pbrt::fuzz

@@ -59,45 +59,27 @@ SphericalCamera CreateSphericalCamera(const CameraSceneEntity &e, CameraMotion w
                                                   : SphericalCamera::Mapping::EquiRectangular);
 }
 
-// pbrt-v4's lens description: per element interface from the scene side, its curvature
-// radius, thickness, index of refraction and aperture diameter in millimetres; a radius of 0
-// is the aperture stop, whose diameter "aperturediameter" sets (clamped to the lens's).
+// The lens file (LensFromDescription), its stop set by "aperturediameter".
 std::vector<LensElementInterface> ReadLens(const ParameterDictionary &p, const FileLoc &loc,
                                            const std::string &path) {
     std::string what = "lens file \"" + path + "\"";
-    const std::string expected =
-        "rows of curvature radius, thickness, index of refraction and aperture diameter (mm)";
-    std::vector<double> values = ReadFloatFile(path, loc, what, expected);
-    if (values.empty() || values.size() % 4 != 0)
-        throw ParseError(loc, fmt::format("{} has {} values, expected {}", what, values.size(),
-                                          expected));
-    // Finding the exit pupils traces 2^26 rays through every interface: bound the work.
-    constexpr size_t kMaxInterfaces = 256;
-    if (values.size() / 4 > kMaxInterfaces)
-        throw ParseError(loc, fmt::format("{} has {} element interfaces; expected at most {} (lens "
-                                          "designs have a few dozen)", what, values.size() / 4,
-                                          kMaxInterfaces));
+    std::vector<double> values = ReadFloatFile(
+        path, loc, what,
+        "rows of curvature radius, thickness, index of refraction and aperture diameter (mm)");
     Float stopDiameter = p.GetOneFloat("aperturediameter", 1);
     if (!(stopDiameter > 0))
         throw ParseError(*p.Loc("aperturediameter"),
                          fmt::format("\"aperturediameter\" {} is not positive", stopDiameter));
+    bool clamped = false;
     std::vector<LensElementInterface> lens;
-    for (size_t i = 0; i < values.size(); i += 4) {
-        Float radius = Float(values[i]), thickness = Float(values[i + 1]),
-              eta = Float(values[i + 2]), diameter = Float(values[i + 3]);
-        if (thickness < 0 || eta < 0 || !(diameter > 0))
-            throw ParseError(loc, fmt::format("{} row {}: thickness {}, index {}, diameter {}; "
-                                              "expected a thickness and an index of at least 0 "
-                                              "and a positive diameter",
-                                              what, i / 4 + 1, thickness, eta, diameter));
-        if (radius == 0 && stopDiameter > diameter)
-            WarningAt(*p.Loc("aperturediameter"),
-                      "aperture diameter %g mm is greater than the lens allows (%g mm); clamped",
-                      stopDiameter, diameter);
-        else if (radius == 0)
-            diameter = stopDiameter;
-        lens.push_back({radius / 1000, thickness / 1000, eta, diameter / 2000});
+    try {
+        lens = LensFromDescription(values, stopDiameter, &clamped);
+    } catch (const std::invalid_argument &error) {
+        throw ParseError(loc, what + " " + error.what());
     }
+    if (clamped)
+        WarningAt(*p.Loc("aperturediameter"),
+                  "aperture diameter %g mm is greater than the lens's stop allows; clamped", stopDiameter);
     return lens;
 }
 

@@ -3,6 +3,7 @@
 #include "pbrt_ext/util/lowdiscrepancy.h"
 #include "pbrt_ext/util/scattering.h"
 
+#include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -113,6 +114,34 @@ Image Polygon(std::span<const Point2f> vertices) {
 }
 
 }  // namespace
+
+std::vector<LensElementInterface> LensFromDescription(std::span<const double> values,
+                                                      Float stopDiameter, bool *clamped) {
+    const char *expected =
+        "rows of curvature radius, thickness, index of refraction and aperture diameter (mm)";
+    if (values.empty() || values.size() % 4 != 0)
+        throw std::invalid_argument(fmt::format("has {} values, expected {}", values.size(), expected));
+    if (values.size() / 4 > kMaxLensInterfaces)
+        throw std::invalid_argument(fmt::format("has {} element interfaces; expected at most {} "
+                                                "(lens designs have a few dozen)",
+                                                values.size() / 4, kMaxLensInterfaces));
+    *clamped = false;
+    std::vector<LensElementInterface> lens;
+    for (size_t i = 0; i < values.size(); i += 4) {
+        Float radius = Float(values[i]), thickness = Float(values[i + 1]),
+              eta = Float(values[i + 2]), diameter = Float(values[i + 3]);
+        if (thickness < 0 || eta < 0 || !(diameter > 0))
+            throw std::invalid_argument(fmt::format(
+                "row {}: thickness {}, index {}, diameter {}; expected a thickness and an index of "
+                "at least 0 and a positive diameter", i / 4 + 1, thickness, eta, diameter));
+        if (radius == 0 && stopDiameter > diameter)
+            *clamped = true;
+        else if (radius == 0)
+            diameter = stopDiameter;
+        lens.push_back({radius / 1000, thickness / 1000, eta, diameter / 2000});
+    }
+    return lens;
+}
 
 ApertureShape::ApertureShape(Image shape) : image(std::move(shape)) {
     Point2i res = image.Resolution();

@@ -28,6 +28,16 @@ struct LensElementInterface {
     Float apertureRadius = 0;
 };
 
+// A lens description's numbers (pbrt-v4's lens files: per interface from the scene side, its
+// curvature radius, thickness, index of refraction and aperture diameter, in millimetres; a
+// radius of 0 is the aperture stop) as interfaces in metres. The stop takes stopDiameter (mm)
+// where the lens allows it; *clamped tells where it does not. Throws std::invalid_argument for
+// a count that is not 4 per interface, more than kMaxLensInterfaces interfaces, or a negative
+// thickness or index or a diameter that is not positive.
+inline constexpr size_t kMaxLensInterfaces = 256;  // the pupil search traces 2^26 rays through each
+std::vector<LensElementInterface> LensFromDescription(std::span<const double> values,
+                                                      Float stopDiameter, bool *clamped);
+
 // The aperture stop's shape: a transmission over the square [-1, 1]^2 of the stop's radius,
 // scaled to pass as much light as the full circle (pbrt-v4's aperture images).
 class ApertureShape {
