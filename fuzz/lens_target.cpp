@@ -41,7 +41,7 @@ void CheckRays(const RealisticCamera &camera) {
 void FuzzLens(std::span<const uint8_t> data) {
     std::string path = WriteScratchFile("lens", "lens.dat", data);
     ExpectReadOrRejection("lens", [&] {
-        std::vector<double> values = ReadFloatFile(path, FileLoc{path, 1, 1}, "lens file", "numbers");
+        std::vector<double> values = ReadFloatFile(path, FileLoc{path, 1, 1}, "lens file", kLensDescriptionFormat);
         try {
             bool clamped;
             std::vector<LensElementInterface> lens = LensFromDescription(values, 5, &clamped);

@@ -59,13 +59,11 @@ SphericalCamera CreateSphericalCamera(const CameraSceneEntity &e, CameraMotion w
                                                   : SphericalCamera::Mapping::EquiRectangular);
 }
 
-// The lens file (LensFromDescription), its stop set by "aperturediameter".
+// The lens file at path (LensFromDescription), its stop set by "aperturediameter"; `what`
+// names the file in errors.
 std::vector<LensElementInterface> ReadLens(const ParameterDictionary &p, const FileLoc &loc,
-                                           const std::string &path) {
-    std::string what = "lens file \"" + path + "\"";
-    std::vector<double> values = ReadFloatFile(
-        path, loc, what,
-        "rows of curvature radius, thickness, index of refraction and aperture diameter (mm)");
+                                           const std::string &path, const std::string &what) {
+    std::vector<double> values = ReadFloatFile(path, loc, what, kLensDescriptionFormat);
     Float stopDiameter = p.GetOneFloat("aperturediameter", 1);
     if (!(stopDiameter > 0))
         throw ParseError(*p.Loc("aperturediameter"),
@@ -113,7 +111,8 @@ RealisticCamera CreateRealisticCamera(const CameraSceneEntity &e, CameraMotion w
                                 "description");
     const FileLoc &loc = *p.Loc("lensfile");
     std::string path = ResolvePath(folder, lensFile);
-    std::vector<LensElementInterface> lens = ReadLens(p, loc, path);
+    std::string what = "lens file \"" + path + "\"";
+    std::vector<LensElementInterface> lens = ReadLens(p, loc, path, what);
     Float focusDistance = p.GetOneFloat("focusdistance", 10);
     if (!(focusDistance > 0))
         throw ParseError(*p.Loc("focusdistance"),
@@ -124,7 +123,7 @@ RealisticCamera CreateRealisticCamera(const CameraSceneEntity &e, CameraMotion w
         return RealisticCamera(std::move(worldFromCamera), film.FullResolution(), film.Diagonal(),
                                std::move(lens), focusDistance, std::move(aperture));
     } catch (const std::invalid_argument &error) {
-        throw ParseError(loc, "lens file \"" + path + "\": " + error.what());
+        throw ParseError(loc, what + ": " + error.what());
     }
 }
 

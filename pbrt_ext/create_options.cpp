@@ -177,26 +177,29 @@ PixelSensor CreateSensor(const SceneEntity &e, Float exposureTime) {
 }
 
 // The spectral film's bands: "nbuckets" (16), "lambdamin" (360) and "lambdamax" (830) nm, as
-// pbrt-v4 reads them; like pbrt-v4's it writes EXR only.
+// pbrt-v4 reads them.
 struct SpectralBands {
     Float lambdaMin = Lambda_min, lambdaMax = Lambda_max;
     int count = 16;
 };
 
+// The spectral and g-buffer films write channels only EXR keeps, as in pbrt-v4.
+void CheckEXROutput(const SceneEntity &e, const std::string &filename) {
+    if (!IsEXRFilename(filename))
+        throw ParseError(e.loc, "Film \"" + e.name + "\" writes EXR only, not \"" + filename + "\"");
+}
+
 SpectralBands ReadSpectralBands(const SceneEntity &e, const std::string &filename) {
     const ParameterDictionary &p = e.parameters;
-    if (!IsEXRFilename(filename))
-        throw ParseError(e.loc, "Film \"spectral\" writes EXR only, not \"" + filename + "\"");
+    CheckEXROutput(e, filename);
     return {p.GetOneFloat("lambdamin", Lambda_min), p.GetOneFloat("lambdamax", Lambda_max),
             p.GetOneInt("nbuckets", 16)};
 }
 
-// The g-buffer film's "coordinatesystem": true for "camera" (the default), false for "world";
-// like pbrt-v4's it writes EXR only.
+// The g-buffer film's "coordinatesystem": true for "camera" (the default), false for "world".
 bool ReadGBufferSpace(const SceneEntity &e, const std::string &filename) {
     const ParameterDictionary &p = e.parameters;
-    if (!IsEXRFilename(filename))
-        throw ParseError(e.loc, "Film \"gbuffer\" writes EXR only, not \"" + filename + "\"");
+    CheckEXROutput(e, filename);
     std::string space = p.GetOneString("coordinatesystem", "camera");
     if (space != "camera" && space != "world")
         throw ParseError(*p.Loc("coordinatesystem"), "unknown \"coordinatesystem\" \"" + space +

@@ -87,7 +87,6 @@ class Refiner {
     std::unordered_map<uint64_t, int> midpoints;
 };
 
-
 // Before refining: a triangle whose longest edge is L makes about (L / maxEdge)^2 pieces.
 void CheckTriangleEstimate(const PlyMesh &mesh, const Transform &renderFromObject, Float maxEdge,
                            uint64_t maxTriangles) {

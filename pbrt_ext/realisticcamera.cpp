@@ -117,10 +117,9 @@ Image Polygon(std::span<const Point2f> vertices) {
 
 std::vector<LensElementInterface> LensFromDescription(std::span<const double> values,
                                                       Float stopDiameter, bool *clamped) {
-    const char *expected =
-        "rows of curvature radius, thickness, index of refraction and aperture diameter (mm)";
     if (values.empty() || values.size() % 4 != 0)
-        throw std::invalid_argument(fmt::format("has {} values, expected {}", values.size(), expected));
+        throw std::invalid_argument(
+            fmt::format("has {} values, expected {}", values.size(), kLensDescriptionFormat));
     if (values.size() / 4 > kMaxLensInterfaces)
         throw std::invalid_argument(fmt::format("has {} element interfaces; expected at most {} "
                                                 "(lens designs have a few dozen)",

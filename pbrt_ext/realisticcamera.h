@@ -35,6 +35,8 @@ struct LensElementInterface {
 // a count that is not 4 per interface, more than kMaxLensInterfaces interfaces, or a negative
 // thickness or index or a diameter that is not positive.
 inline constexpr size_t kMaxLensInterfaces = 256;  // the pupil search traces 2^26 rays through each
+inline constexpr const char *kLensDescriptionFormat =
+    "rows of curvature radius, thickness, index of refraction and aperture diameter (mm)";
 std::vector<LensElementInterface> LensFromDescription(std::span<const double> values,
                                                       Float stopDiameter, bool *clamped);
 
@@ -86,21 +88,20 @@ class RealisticCamera {
     Float TraceLensesFromFilm(const Ray &rCamera, Ray *rOut) const;
     Float TraceLensesFromScene(const Ray &rCamera, Ray *rOut) const;
     ThickLens ThickLensApproximation() const;
-    // The bounds on the rear element's plane that hold every ray from film points at distances
-    // [r0, r1] from the centre along +x that passes the lens (pbrt-v4's BoundExitPupil), found
-    // by rays to RearPlanePoints.
-    Bounds2f BoundExitPupil(Float r0, Float r1, std::span<const Point2f> rearPoints) const;
-    std::vector<Point2f> RearPlanePoints(int n) const;
     // The tabulated bounds for a film point at distance r from the centre.
     Bounds2f ExitPupilBounds(Float r) const;
     Float LensRearZ() const { return elements.back().thickness; }
     Float LensFrontZ() const;
     Float RearElementRadius() const { return elements.back().apertureRadius; }
-    const Bounds2f &PhysicalExtent() const { return physicalExtent; }
 
   private:
     Float FocusThickLens(Float focusDistance) const;
     Bounds2f RearPlaneSquare() const;
+    std::vector<Point2f> RearPlanePoints(int n) const;
+    // The bounds on the rear element's plane that hold every ray from film points at distances
+    // [r0, r1] from the centre along +x that passes the lens (pbrt-v4's BoundExitPupil), found
+    // by rays to RearPlanePoints.
+    Bounds2f BoundExitPupil(Float r0, Float r1, std::span<const Point2f> rearPoints) const;
 
     CameraMotion worldFromCamera;
     Point2i fullResolution;

@@ -2,6 +2,7 @@
 
 #include "pbrt_ext/util/log.h"
 
+#include <array>
 #include <stdexcept>
 
 namespace pbrt {
@@ -175,6 +176,28 @@ void SceneBuilder::SetLightSampler(std::string name) {
     lightSamplerName = std::move(name);
 }
 
+namespace {
+
+// The 16 stratified sample pairs of the g-buffer's albedo estimate, made once.
+struct AlbedoSamples {
+    std::array<Float, 16> uc;
+    std::array<Point2f, 16> u2;
+};
+
+const AlbedoSamples &GetAlbedoSamples() {
+    static const AlbedoSamples samples = [] {
+        AlbedoSamples s;
+        for (int i = 0; i < 16; ++i) {
+            s.uc[size_t(i)] = (i * 7 % 16 + 0.5f) / 16;
+            s.u2[size_t(i)] = Point2f((i % 4 + 0.5f) / 4, (i / 4 + 0.5f) / 4);
+        }
+        return s;
+    }();
+    return samples;
+}
+
+}  // namespace
+
 std::optional<VisibleSurface> Scene::FirstVisibleSurface(RayDifferential ray,
                                                          SampledWavelengths lambda) const {
     for (;;) {
@@ -187,13 +210,6 @@ std::optional<VisibleSurface> Scene::FirstVisibleSurface(RayDifferential ray,
             ray = si.SpawnRay(ray.d);
             continue;
         }
-        // The albedo from 16 stratified directions.
-        std::array<Float, 16> uc;
-        std::array<Point2f, 16> u2;
-        for (int i = 0; i < 16; ++i) {
-            uc[size_t(i)] = (i * 7 % 16 + 0.5f) / 16;
-            u2[size_t(i)] = Point2f((i % 4 + 0.5f) / 4, (i / 4 + 0.5f) / 4);
-        }
         // Camera space through the inverse the camera's transform keeps.
         Transform worldFromOutput;
         if (film.GBuffer()->CameraSpace()) worldFromOutput = camera.WorldFromCamera(si.time);
@@ -204,7 +220,8 @@ std::optional<VisibleSurface> Scene::FirstVisibleSurface(RayDifferential ray,
         v.uv = si.uv;
         v.dpdx = worldFromOutput.ApplyInverse(si.dpdx);
         v.dpdy = worldFromOutput.ApplyInverse(si.dpdy);
-        v.albedo = bsdf->rho(si.wo, uc, u2);
+        const AlbedoSamples &albedo = GetAlbedoSamples();
+        v.albedo = bsdf->rho(si.wo, albedo.uc, albedo.u2);
         return v;
     }
 }
