@@ -17,7 +17,7 @@ namespace pbrt {
 Spectrum GetSpectrum(const ParameterDictionary &parameters, const std::string &name,
                      Spectrum defaultValue, SpectrumType type, const std::string &folder) {
     std::optional<SpectrumParam> s = parameters.GetOneSpectrum(name);
-    return s ? CreateSpectrum(*s, type, RGBColorSpace::sRGB(), folder) : defaultValue;
+    return s ? CreateSpectrum(*s, type, parameters.ColorSpace(), folder) : defaultValue;
 }
 
 namespace {
@@ -30,7 +30,7 @@ struct Emission {
     Float toNits;
 };
 Emission GetEmission(const ParameterDictionary &p, const std::string &name, const std::string &folder) {
-    Spectrum s = GetSpectrum(p, name, Spectrum::DenselySampled(RGBColorSpace::sRGB().illuminant),
+    Spectrum s = GetSpectrum(p, name, Spectrum::DenselySampled(p.ColorSpace().illuminant),
                              SpectrumType::Illuminant, folder);
     Float nits = SpectrumToPhotometric(s);
     // Tabulated here, so that every triangle of an emissive mesh shares one table.
@@ -131,7 +131,7 @@ Image EnvironmentImage(const TransformedSceneEntity &e, const std::string &filen
                        const std::string &folder) {
     const ParameterDictionary &p = e.parameters;
     if (filename.empty())
-        return UniformImage(GetSpectrum(p, "L", Spectrum::DenselySampled(RGBColorSpace::sRGB().illuminant),
+        return UniformImage(GetSpectrum(p, "L", Spectrum::DenselySampled(p.ColorSpace().illuminant),
                                         SpectrumType::Illuminant, folder));
     if (p.HasParameter("L"))
         throw ParseError(*p.Loc("L"), "an infinite light takes \"L\" or \"filename\", not both");
@@ -266,10 +266,11 @@ AreaLightDescription CreateAreaLight(const SceneEntity &e, const std::string &fo
     if (p.HasParameter("filename")) {
         if (p.HasParameter("L"))
             throw ParseError(*p.Loc("L"), "an area light takes \"L\" or \"filename\", not both");
-        // pbrt-v4 makes an image's texels 1 nit per unit of the colour space's illuminant.
-        const RGBColorSpace &cs = RGBColorSpace::sRGB();
-        light.image = std::make_shared<const EmissionImage>(ReadLightImage(e, folder), &cs);
-        light.scale = p.GetOneFloat("scale", 1) / IlluminantPhotometric(cs);
+        // pbrt-v4 makes an image's texels 1 nit per unit of the illuminant of the colour space
+        // in force; the texels themselves are in the image's (sRGB: images carry none here).
+        light.image = std::make_shared<const EmissionImage>(ReadLightImage(e, folder),
+                                                            &RGBColorSpace::sRGB());
+        light.scale = p.GetOneFloat("scale", 1) / IlluminantPhotometric(p.ColorSpace());
     } else {
         Emission L = GetEmission(p, "L", folder);
         light.L = L.spectrum;

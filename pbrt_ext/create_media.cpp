@@ -231,7 +231,7 @@ RGBGridMedium CreateRGBGrid(const ParameterDictionary &p, const Transform &rende
         throw ParseError(loc, "rgbgrid medium needs \"rgb sigma_a\" and/or \"rgb sigma_s\"");
     if (!Le.empty() && sigma_a.empty())
         throw ParseError(LocOf(p, "Le", loc), "rgbgrid medium with \"Le\" needs \"sigma_a\"");
-    const RGBColorSpace &cs = RGBColorSpace::sRGB();
+    const RGBColorSpace &cs = p.ColorSpace();
     auto grid = [&]<typename S>(const std::string &name, const std::vector<RGB> &values)
         -> std::optional<SampledGrid<S>> {
         if (values.empty())

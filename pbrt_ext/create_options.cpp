@@ -170,7 +170,7 @@ PixelSensor CreateSensor(const SceneEntity &e, Float exposureTime) {
     std::string name = p.GetOneString("sensor", "cie1931");
     try {
         return PixelSensor::Create(name, p.GetOneFloat("iso", 100), p.GetOneFloat("whitebalance", 0),
-                                   exposureTime, RGBColorSpace::sRGB());
+                                   exposureTime, p.ColorSpace());
     } catch (const std::invalid_argument &error) {
         throw ParseError(p.Loc("sensor") ? *p.Loc("sensor") : e.loc, error.what());
     }
@@ -252,7 +252,7 @@ RGBFilm CreateFilm(const SceneEntity &e, Float exposureTime, Filter filter,
                       (gbufferInCameraSpace ? GBufferChannels::BytesPerPixel() : 0));
     RGBFilm film = WithPixelBoundsLoc(e, overrides, [&] {
         return RGBFilm(resolution, pixelBounds, std::move(filter), filename, maxComponent, sensor,
-                       &RGBColorSpace::sRGB(), diagonal / 1000);
+                       &p.ColorSpace(), diagonal / 1000);
     });
     if (gbufferInCameraSpace) film.EnableGBuffer(*gbufferInCameraSpace);
     try {

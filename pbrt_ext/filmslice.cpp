@@ -141,7 +141,7 @@ SliceIdentity MakeSliceIdentity(const Scene &scene, const std::string &sceneText
 FilmSlice FilmSlice::FromFilm(const RGBFilm &film, SampleRange samples, double seconds,
                               SliceIdentity identity, std::string scene) {
     FilmSlice slice{film.FullResolution(), film.PixelBounds(), samples, seconds, std::move(identity),
-                    std::move(scene), film.OutputRGBFromSensorRGB(), {}, {}};
+                    std::move(scene), film.OutputRGBFromSensorRGB(), &film.ColorSpace(), {}, {}};
     const size_t n = PixelCount(slice.pixelBounds);
     slice.sums.resize(4 * n);
     if (film.HasSplats()) slice.splats.resize(3 * n);
@@ -185,7 +185,7 @@ void FilmSlice::Write(const std::string &path) const {
     metadata.scene = scene;
     metadata.fullResolution = fullResolution;
     metadata.pixelBounds = pixelBounds;
-    metadata.colorSpace = &RGBColorSpace::sRGB();  // the only output space (colorspace.h)
+    metadata.colorSpace = colorSpace;
     auto set = [&](const std::string &key, std::string value) {
         metadata.extra[kAttributePrefix + key] = std::move(value);
     };
@@ -229,6 +229,9 @@ FilmSlice FilmSlice::Read(const std::string &path) {
         slice.identity.emplace_back(name, Attribute(exr, path, name));
     if (auto it = exr.stringAttributes.find("scene"); it != exr.stringAttributes.end())
         slice.scene = it->second;
+    // The output space is also in the identity, through outputRGBFromSensorRGB.
+    if (auto it = exr.stringAttributes.find("colorSpace"); it != exr.stringAttributes.end())
+        if (const RGBColorSpace *cs = RGBColorSpace::GetNamed(it->second)) slice.colorSpace = cs;
 
     const size_t n = PixelCount(slice.pixelBounds);
     slice.sums.resize(4 * n);

@@ -47,6 +47,7 @@ struct FilmSlice {
     SliceIdentity identity;
     std::string scene;  // the scene file as the command line named it (not part of the identity)
     SquareMatrix<3> outputRGBFromSensorRGB;
+    const RGBColorSpace *colorSpace = &RGBColorSpace::sRGB();  // the film's output space
     // Per pixel of pixelBounds, row-major: 4 sums (R, G, B, weight), and 3 splat sums or none.
     std::vector<double> sums, splats;
 

@@ -1,5 +1,7 @@
 #include "pbrt_ext/paramdict.h"
 
+#include "pbrt_ext/util/colorspace.h"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -110,10 +112,19 @@ ParameterDictionary::ParameterDictionary(ParsedParameterVector p)
 
 ParameterDictionary::ParameterDictionary(ParsedParameterVector p,
                                          const ParsedParameterVector &lowerPriority)
-    : params(std::move(p)) {
+    : ParameterDictionary(std::move(p), lowerPriority, nullptr) {}
+
+ParameterDictionary::ParameterDictionary(ParsedParameterVector p,
+                                         const ParsedParameterVector &lowerPriority,
+                                         const RGBColorSpace *colorSpace)
+    : params(std::move(p)), colorSpace(colorSpace) {
     // The last of two equal names in one list wins, as in pbrt-v4: reversing puts it first.
     std::reverse(params.begin(), params.end());
     params.insert(params.end(), lowerPriority.rbegin(), lowerPriority.rend());
+}
+
+const RGBColorSpace &ParameterDictionary::ColorSpace() const {
+    return colorSpace ? *colorSpace : RGBColorSpace::sRGB();
 }
 
 const ParsedParameter *ParameterDictionary::find(const std::string &name) const {

@@ -19,6 +19,8 @@
 
 namespace pbrt {
 
+class RGBColorSpace;
+
 // How a parameter type's values are written and how many make one item (3 for a point3).
 enum class ParameterValueKind { Number, Integer, Bool, String, Spectrum };
 
@@ -61,6 +63,13 @@ class ParameterDictionary {
     // `params` take precedence over `lowerPriority` (a shape's own parameters over those of
     // an `Attribute "shape"` directive), as in pbrt-v4.
     ParameterDictionary(ParsedParameterVector params, const ParsedParameterVector &lowerPriority);
+    // `colorSpace`: the one in force at the directive (ColorSpace), in which its "rgb" values
+    // are given, as pbrt-v4's ParameterDictionary carries it; null: sRGB.
+    ParameterDictionary(ParsedParameterVector params, const ParsedParameterVector &lowerPriority,
+                        const RGBColorSpace *colorSpace);
+
+    // The colour space of the directive's "rgb" values (and, for a Film, its output's).
+    const RGBColorSpace &ColorSpace() const;
 
     Float GetOneFloat(const std::string &name, Float def) const;
     int GetOneInt(const std::string &name, int def) const;
@@ -113,6 +122,7 @@ class ParameterDictionary {
 
     // Highest priority first.
     ParsedParameterVector params;
+    const RGBColorSpace *colorSpace = nullptr;  // null: sRGB
 };
 
 }  // namespace pbrt

@@ -140,9 +140,11 @@ void BasicSceneBuilder::Option(const std::string &name, const std::string &value
 }
 
 void BasicSceneBuilder::ColorSpace(const std::string &name, FileLoc loc) {
-    if (name != "srgb")
-        WarningAt(loc, "color space \"%s\" is not supported; colors are read as srgb",
-                  name.c_str());
+    const RGBColorSpace *cs = RGBColorSpace::GetNamed(name);
+    if (!cs)
+        throw ParseError(loc, "unknown color space \"" + name + "\"; expected one of " +
+                                  RGBColorSpace::NamesList());
+    graphicsState.colorSpace = cs;
 }
 
 void BasicSceneBuilder::PixelFilter(const std::string &name, ParsedParameterVector params,
@@ -153,7 +155,8 @@ void BasicSceneBuilder::PixelFilter(const std::string &name, ParsedParameterVect
 
 void BasicSceneBuilder::Film(const std::string &type, ParsedParameterVector params, FileLoc loc) {
     VerifyOptions("Film", loc);
-    scene->film = SceneEntity(type, ParameterDictionary(std::move(params)), loc);
+    scene->film =
+        SceneEntity(type, ParameterDictionary(std::move(params), {}, graphicsState.colorSpace), loc);
 }
 
 void BasicSceneBuilder::Sampler(const std::string &name, ParsedParameterVector params,
@@ -177,7 +180,7 @@ void BasicSceneBuilder::Integrator(const std::string &name, ParsedParameterVecto
 void BasicSceneBuilder::Camera(const std::string &name, ParsedParameterVector params, FileLoc loc) {
     VerifyOptions("Camera", loc);
     scene->camera.name = name;
-    scene->camera.parameters = ParameterDictionary(std::move(params));
+    scene->camera.parameters = ParameterDictionary(std::move(params), {}, graphicsState.colorSpace);
     scene->camera.loc = loc;
     scene->camera.cameraFromWorld = graphicsState.ctm;
     scene->camera.transformStartTime = scene->transformStartTime;
@@ -285,7 +288,8 @@ void BasicSceneBuilder::MakeNamedMedium(const std::string &name, ParsedParameter
         throw ParseError(loc, "named medium \"" + name + "\" redefined; first defined at " +
                                   it->second.loc.ToString());
     scene->media[name] = TransformedSceneEntity(
-        SceneEntity(name, ParameterDictionary(std::move(params), graphicsState.mediumAttributes),
+        SceneEntity(name, ParameterDictionary(std::move(params), graphicsState.mediumAttributes,
+                            graphicsState.colorSpace),
                     loc),
         StaticCTM("media", loc));
 }
@@ -382,7 +386,8 @@ void BasicSceneBuilder::Texture(const std::string &name, const std::string &type
                                   it->second.loc.ToString());
     textures[name] = TransformedSceneEntity(
         SceneEntity(texname,
-                    ParameterDictionary(std::move(params), graphicsState.textureAttributes), loc),
+                    ParameterDictionary(std::move(params), graphicsState.textureAttributes,
+                            graphicsState.colorSpace), loc),
         StaticCTM("textures", loc));
 }
 
@@ -390,7 +395,8 @@ void BasicSceneBuilder::Material(const std::string &name, ParsedParameterVector 
                                  FileLoc loc) {
     VerifyWorld("Material", loc);
     scene->materials.push_back(SceneEntity(
-        name, ParameterDictionary(std::move(params), graphicsState.materialAttributes), loc));
+        name, ParameterDictionary(std::move(params), graphicsState.materialAttributes,
+                            graphicsState.colorSpace), loc));
     graphicsState.currentMaterialIndex = int(scene->materials.size()) - 1;
     graphicsState.currentMaterialName.clear();
 }
@@ -402,7 +408,8 @@ void BasicSceneBuilder::MakeNamedMaterial(const std::string &name, ParsedParamet
         throw ParseError(loc, "named material \"" + name + "\" redefined; first defined at " +
                                   it->second.loc.ToString());
     scene->namedMaterials[name] = SceneEntity(
-        "", ParameterDictionary(std::move(params), graphicsState.materialAttributes), loc);
+        "", ParameterDictionary(std::move(params), graphicsState.materialAttributes,
+                            graphicsState.colorSpace), loc);
 }
 
 void BasicSceneBuilder::NamedMaterial(const std::string &name, FileLoc loc) {
@@ -419,7 +426,8 @@ void BasicSceneBuilder::LightSource(const std::string &name, ParsedParameterVect
     VerifyWorld("LightSource", loc);
     scene->lights.push_back(LightSceneEntity(
         TransformedSceneEntity(
-            SceneEntity(name, ParameterDictionary(std::move(params), graphicsState.lightAttributes),
+            SceneEntity(name, ParameterDictionary(std::move(params), graphicsState.lightAttributes,
+                            graphicsState.colorSpace),
                         loc),
             StaticCTM("lights", loc)),
         graphicsState.outsideMedium));
@@ -429,7 +437,8 @@ void BasicSceneBuilder::AreaLightSource(const std::string &name, ParsedParameter
                                         FileLoc loc) {
     VerifyWorld("AreaLightSource", loc);
     graphicsState.areaLight = SceneEntity(
-        name, ParameterDictionary(std::move(params), graphicsState.lightAttributes), loc);
+        name, ParameterDictionary(std::move(params), graphicsState.lightAttributes,
+                            graphicsState.colorSpace), loc);
 }
 
 void BasicSceneBuilder::Shape(const std::string &name, ParsedParameterVector params, FileLoc loc) {
@@ -441,7 +450,8 @@ void BasicSceneBuilder::Shape(const std::string &name, ParsedParameterVector par
                   activeObject.c_str());
     ShapeSceneEntity shape;
     static_cast<SceneEntity &>(shape) = SceneEntity(
-        name, ParameterDictionary(std::move(params), graphicsState.shapeAttributes), loc);
+        name, ParameterDictionary(std::move(params), graphicsState.shapeAttributes,
+                            graphicsState.colorSpace), loc);
     shape.worldFromObject = graphicsState.ctm.t[0];
     shape.worldFromObjectEnd = graphicsState.ctm.t[1];
     shape.reverseOrientation = graphicsState.reverseOrientation;

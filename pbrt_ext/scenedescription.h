@@ -17,6 +17,7 @@
 #include "pbrt_ext/paramdict.h"
 #include "pbrt_ext/parser.h"
 #include "pbrt_ext/util/error.h"
+#include "pbrt_ext/util/colorspace.h"
 #include "pbrt_ext/util/transform.h"
 
 namespace pbrt {
@@ -195,6 +196,8 @@ class BasicSceneBuilder : public ParserTarget {
         std::string currentMaterialName;
         std::optional<SceneEntity> areaLight;
         std::string insideMedium, outsideMedium;  // MediumInterface; empty: vacuum
+        // ColorSpace: the space of later directives' "rgb" values (and of the Film's output).
+        const RGBColorSpace *colorSpace = &RGBColorSpace::sRGB();
         // Attribute "shape"|"light"|"material"|"medium"|"texture": defaults for later
         // directives.
         ParsedParameterVector shapeAttributes, lightAttributes, materialAttributes,

@@ -383,12 +383,29 @@ MakeNamedMedium "fog" "string type" "homogeneous")"),
               "s.pbrt:3:1: error: named medium \"fog\" redefined; first defined at s.pbrt:2:1");
 }
 
-TEST(SceneDescription, OnlySrgbColorSpaceIsSupported) {
+// ColorSpace is graphics state: the directives after it carry it (the Film included), and
+// AttributeEnd restores the space AttributeBegin saw.
+TEST(SceneDescription, ColorSpaceIsGraphicsState) {
     WarningCounter warnings;
-    Describe("ColorSpace \"srgb\"\nWorldBegin");
+    SceneDescription s = Describe(R"(ColorSpace "rec2020"
+Film "rgb"
+WorldBegin
+Material "diffuse"
+AttributeBegin
+ColorSpace "ACES2065-1"
+LightSource "point"
+AttributeEnd
+Shape "sphere")");
     EXPECT_EQ(warnings.Count(), 0);
-    Describe("ColorSpace \"rec2020\"\nWorldBegin");
-    EXPECT_EQ(warnings.Count(), 1);
+    EXPECT_EQ(&s.film.parameters.ColorSpace(), &RGBColorSpace::Rec2020());
+    EXPECT_EQ(&s.materials.back().parameters.ColorSpace(), &RGBColorSpace::Rec2020());
+    EXPECT_EQ(&s.lights.back().parameters.ColorSpace(), &RGBColorSpace::ACES2065_1());
+    EXPECT_EQ(&s.shapes.back().parameters.ColorSpace(), &RGBColorSpace::Rec2020());
+    EXPECT_EQ(&Describe("WorldBegin\nMaterial \"diffuse\"").materials.back().parameters.ColorSpace(),
+              &RGBColorSpace::sRGB());
+    EXPECT_EQ(ErrorOf("ColorSpace \"prophoto\"\nWorldBegin"),
+              "s.pbrt:1:1: error: unknown color space \"prophoto\"; expected one of \"srgb\", "
+              "\"dci-p3\", \"rec2020\", \"aces2065-1\"");
 }
 
 TEST(SceneDescription, ActiveTransformChoosesWhichEndMoves) {
@@ -465,9 +482,6 @@ ObjectEnd)");
 }
 
 TEST(SceneDescription, WarningsNameWhatIsIgnoredWhere) {
-    EXPECT_EQ(WarningsOf("ColorSpace \"rec2020\"\nWorldBegin"),
-              "s.pbrt:1:1: warning: color space \"rec2020\" is not supported; colors are read as "
-              "srgb\n");
     EXPECT_EQ(WarningsOf("WorldBegin\nActiveTransform EndTime\nTranslate 1 0 0\n"
                          "LightSource \"point\""),
               "s.pbrt:4:1: warning: lights do not move over the shutter interval (as in pbrt-v4); "

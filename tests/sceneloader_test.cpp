@@ -106,7 +106,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                          "procedural-textures.pbrt",
                                          "lights-images.pbrt", "portal-skylight.pbrt",
                                          "realistic-camera.pbrt", "spectral-film.pbrt",
-                                         "gbuffer-film.pbrt", "displacement.pbrt"));
+                                         "gbuffer-film.pbrt", "displacement.pbrt",
+                                         "colorspaces.pbrt"));
 
 // Curves of each type with hair, a moving cylinder, a moving spherical camera, a bump map (ray
 // differentials), tangents S and a subdivision surface, all in one scene (also a fuzz seed).

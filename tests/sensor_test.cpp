@@ -95,7 +95,7 @@ TEST(RGBColorSpace, SRGBMatricesInvertEachOtherAndWhiteIsTheIlluminant) {
 
     EXPECT_EQ(RGBColorSpace::GetNamed("sRGB"), &cs);
     EXPECT_EQ(RGBColorSpace::GetNamed("srgb"), &cs);
-    EXPECT_EQ(RGBColorSpace::GetNamed("rec2020"), nullptr);
+    EXPECT_EQ(RGBColorSpace::GetNamed("rec2020"), &RGBColorSpace::Rec2020());
     EXPECT_EQ(RGBColorSpace::GetNamed("nonsense"), nullptr);
 }
 

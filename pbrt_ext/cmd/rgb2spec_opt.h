@@ -11,27 +11,36 @@
 // a colour close to a solved one has a solution close to it.
 //
 // What we do differently, and why:
-//  - The observer and D65 are ciedata.h's tables over 360-830 nm (pbrt-v4's own data), so the
+//  - The observer and the illuminants are the renderer's tables over 360-830 nm (pbrt-v4's own
+//    data: ciedata.h's D65, and "illum-acesD60" for ACES2065-1, the illuminant of pbrt-v4's
+//    RGBColorSpace, where pbrt-v4's generator fits ACES under a D60 of its own), so the
 //    renderer, the generator and the tests integrate against the same data. Integration is
-//    Simpson's rule on 0.5 nm steps, aligned with the 1 nm matching functions (and the 5 nm D65)
-//    so that every panel integrates a smooth function (the interpolated data has kinks only at
-//    the samples).
-//  - The RGB -> XYZ matrix is built from the sRGB primaries and the white that the tabulated D65
-//    integrates to (as pbrt-v4's RGBColorSpace builds it), not the rounded standard matrix, so
-//    that the constant spectrum c is exactly the grey (c, c, c).
+//    Simpson's rule on 0.5 nm steps, aligned with the 1 nm matching functions (and the 5 nm
+//    illuminants) so that every panel integrates a smooth function (the interpolated data has
+//    kinks only at the samples).
+//  - The RGB -> XYZ matrix is built from the space's primaries and the white that its tabulated
+//    illuminant integrates to (as pbrt-v4's RGBColorSpace builds it), not the rounded standard
+//    matrix, so that the constant spectrum c is exactly the grey (c, c, c).
 //  - The Jacobian is analytic (pbrt-v4: central differences), a step that does not lower the
 //    residual is halved (pbrt-v4 takes the full step), and the coefficients are not bounded to
-//    200 (see kMaxCoefficient), so every cell converges (to 1e-6 in CIELAB).
+//    200 (see kMaxCoefficient), so every sRGB cell converges (to 1e-6 in CIELAB). The wider
+//    spaces hold colours that no reflectance has (ACES's green and blue lie outside the spectral
+//    locus; saturated Rec. 2020 and DCI-P3 colours are brighter than any reflectance of their
+//    chromaticity): those cells keep the closest fit the iterations reach, as in pbrt-v4.
 //  - The layer z = 0 (black, which no finite coefficients reach) stores the solution of the
 //    next layer, z = 1.7e-6: lookups below it keep their hue and stay within 2e-6 of black.
 #pragma once
 
+#include "pbrt_ext/namedspectradata.h"
 #include "pbrt_ext/util/ciedata.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 #include <cstddef>
+#include <span>
+#include <string_view>
 
 namespace pbrt::rgb2spec {
 
@@ -70,6 +79,49 @@ inline Vec3 NodeRGB(int maxc, int zi, int yi, int xi) {
     return rgb;
 }
 
+// ---- The colour spaces ---------------------------------------------------------------------------
+
+// pbrt-v4's four RGB colour spaces (util/colorspace.cpp): the primaries as CIE xy chromaticities
+// (sRGB: ITU-R BT.709; DCI-P3: SMPTE RP 431-2 primaries with a D65 white, as pbrt-v4 has it;
+// Rec. 2020: ITU-R BT.2020; ACES2065-1: SMPTE ST 2065-1's AP0, whose green and blue lie outside
+// the spectral locus) and the illuminant that fixes the white.
+struct Gamut {
+    const char *name;    // pbrt-v4's ColorSpace name
+    const char *symbol;  // in the generated table's C++ names
+    std::array<double, 2> r, g, b;
+    double (*illuminant)(double lambda);
+};
+
+// D65 as ciedata.h tabulates it (the data of pbrt-v4's "stdillum-D65").
+inline double D65At(double lambda) { return CIEAt(Float(lambda)).d65; }
+// pbrt-v4's "illum-acesD60", linearly interpolated between its samples (namedspectradata.cpp).
+inline double ACESD60At(double lambda) {
+    for (size_t i = 0; i < kNumNamedSpectrumTables; ++i) {
+        const NamedSpectrumTable &table = kNamedSpectrumTables[i];
+        if (table.name != "illum-acesD60") continue;
+        std::span<const float> v = table.interleaved;
+        for (size_t k = 0; k + 3 < v.size(); k += 2)
+            if (lambda >= v[k] && lambda <= v[k + 2])
+                return v[k + 1] + (lambda - v[k]) / (v[k + 2] - v[k]) * (v[k + 3] - v[k + 1]);
+        return 0;
+    }
+    return 0;
+}
+
+inline constexpr Gamut kGamuts[] = {
+    {"srgb", "sRGB", {0.64, 0.33}, {0.30, 0.60}, {0.15, 0.06}, D65At},
+    {"dci-p3", "DCI_P3", {0.68, 0.32}, {0.265, 0.690}, {0.15, 0.06}, D65At},
+    {"rec2020", "Rec2020", {0.708, 0.292}, {0.170, 0.797}, {0.131, 0.046}, D65At},
+    {"aces2065-1", "ACES2065_1", {0.7347, 0.2653}, {0.0, 1.0}, {0.0001, -0.077}, ACESD60At},
+};
+
+// The entry of kGamuts named `name`; null for any other.
+inline const Gamut *FindGamut(std::string_view name) {
+    for (const Gamut &g : kGamuts)
+        if (name == g.name) return &g;
+    return nullptr;
+}
+
 // ---- The fit -----------------------------------------------------------------------------------
 
 // The optimizer's wavelength variable t = (lambda - 360) / 470, in [0, 1] over the data; the
@@ -100,23 +152,24 @@ struct SolveResult {
 class SigmoidFit {
   public:
     // Linear sRGB (ITU-R BT.709 primaries), white = CIE D65.
-    static const SigmoidFit &sRGB() {
-        static const SigmoidFit fit({0.64, 0.33}, {0.30, 0.60}, {0.15, 0.06});
-        return fit;
-    }
+    static const SigmoidFit &sRGB() { return ForGamut(kGamuts[0]); }
+    // The fit for one of kGamuts, made once.
+    static const SigmoidFit &ForGamut(const Gamut &gamut);
 
-    // Primaries as CIE xy chromaticities; the white is D65 as tabulated in ciedata.h.
-    SigmoidFit(std::array<double, 2> r, std::array<double, 2> g, std::array<double, 2> b) {
+    // Primaries as CIE xy chromaticities; the white is the illuminant's.
+    SigmoidFit(std::array<double, 2> r, std::array<double, 2> g, std::array<double, 2> b,
+               double (*illuminant)(double lambda)) {
         constexpr double h = 0.5;  // two Simpson subintervals per 1 nm sample
         double norm = 0;
         for (int n = 0; n < kNodes; ++n) {
             double lambda = kLambdaMin + h * n;
             CIESample c = CIEAt(Float(lambda));
             double w = h / 3 * (n == 0 || n == kNodes - 1 ? 1 : (n % 2 == 1 ? 4 : 2));
+            double I = illuminant(lambda);
             t[n] = (lambda - kLambdaMin) / kLambdaRange;
-            weight[0][n] = w * c.x * c.d65;
-            weight[1][n] = w * c.y * c.d65;
-            weight[2][n] = w * c.z * c.d65;
+            weight[0][n] = w * c.x * I;
+            weight[1][n] = w * c.y * I;
+            weight[2][n] = w * c.z * I;
             norm += weight[1][n];
         }
         for (auto &row : weight)
@@ -313,5 +366,14 @@ class SigmoidFit {
     double t[kNodes];
     double weight[3][kNodes];  // quadrature weight * cmf * illuminant / normalization
 };
+
+inline const SigmoidFit &SigmoidFit::ForGamut(const Gamut &gamut) {
+    static const std::vector<SigmoidFit> fits = [] {
+        std::vector<SigmoidFit> v;
+        for (const Gamut &g : kGamuts) v.emplace_back(g.r, g.g, g.b, g.illuminant);
+        return v;
+    }();
+    return fits[size_t(&gamut - kGamuts)];
+}
 
 }  // namespace pbrt::rgb2spec

@@ -38,6 +38,8 @@ RGBSigmoidPolynomial RGBColorSpace::ToRGBCoeffs(RGB rgb) const {
                                      std::max<Float>(rgb.b, 0)));
 }
 
+// The primaries are pbrt-v4's (util/colorspace.cpp), the same as cmd/rgb2spec_opt.h's kGamuts,
+// which fitted each table under the same illuminant.
 const RGBColorSpace &RGBColorSpace::sRGB() {
     static const RGBColorSpace cs({0.64f, 0.33f}, {0.3f, 0.6f}, {0.15f, 0.06f},
                                   GetNamedSpectrum("stdillum-D65").value(),
@@ -45,12 +47,60 @@ const RGBColorSpace &RGBColorSpace::sRGB() {
     return cs;
 }
 
+const RGBColorSpace &RGBColorSpace::DCI_P3() {
+    static const RGBColorSpace cs({0.68f, 0.32f}, {0.265f, 0.69f}, {0.15f, 0.06f},
+                                  GetNamedSpectrum("stdillum-D65").value(),
+                                  &RGBToSpectrumTable::DCI_P3());
+    return cs;
+}
+
+const RGBColorSpace &RGBColorSpace::Rec2020() {
+    static const RGBColorSpace cs({0.708f, 0.292f}, {0.17f, 0.797f}, {0.131f, 0.046f},
+                                  GetNamedSpectrum("stdillum-D65").value(),
+                                  &RGBToSpectrumTable::Rec2020());
+    return cs;
+}
+
+const RGBColorSpace &RGBColorSpace::ACES2065_1() {
+    static const RGBColorSpace cs({0.7347f, 0.2653f}, {0.f, 1.f}, {0.0001f, -0.077f},
+                                  GetNamedSpectrum("illum-acesD60").value(),
+                                  &RGBToSpectrumTable::ACES2065_1());
+    return cs;
+}
+
+namespace {
+
+struct NamedColorSpace {
+    std::string_view name;
+    const RGBColorSpace &(*get)();
+};
+constexpr NamedColorSpace kNamedColorSpaces[] = {{"srgb", RGBColorSpace::sRGB},
+                                                 {"dci-p3", RGBColorSpace::DCI_P3},
+                                                 {"rec2020", RGBColorSpace::Rec2020},
+                                                 {"aces2065-1", RGBColorSpace::ACES2065_1}};
+
+}  // namespace
+
 const RGBColorSpace *RGBColorSpace::GetNamed(std::string_view name) {
     std::string lower(name);
     std::transform(lower.begin(), lower.end(), lower.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
-    if (lower == "srgb") return &sRGB();
+    for (const NamedColorSpace &n : kNamedColorSpaces)
+        if (lower == n.name) return &n.get();
     return nullptr;
+}
+
+std::string_view RGBColorSpace::Name() const {
+    for (const NamedColorSpace &n : kNamedColorSpaces)
+        if (*this == n.get()) return n.name;
+    return "custom";
+}
+
+std::string RGBColorSpace::NamesList() {
+    std::string list;
+    for (const NamedColorSpace &n : kNamedColorSpaces)
+        list += (list.empty() ? "\"" : ", \"") + std::string(n.name) + "\"";
+    return list;
 }
 
 bool RGBColorSpace::operator==(const RGBColorSpace &cs) const {

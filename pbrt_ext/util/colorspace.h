@@ -1,4 +1,5 @@
-// pbrt_ext: RGB colour spaces (pbrt-v4's util/colorspace.h, host side; only sRGB is built).
+// pbrt_ext: RGB colour spaces (pbrt-v4's util/colorspace.h, host side): sRGB, DCI-P3, Rec. 2020
+// and ACES2065-1, as pbrt-v4 has them.
 //
 // A colour space is three primaries and a white, given as xy chromaticities, plus the spectrum of
 // its illuminant, which fixes the white: w is the chromaticity of that spectrum, as pbrt-v4
@@ -35,16 +36,23 @@ class RGBColorSpace {
 
     // Rec. ITU-R BT.709 primaries with pbrt-v4's "stdillum-D65" (luminance 1) as illuminant.
     static const RGBColorSpace &sRGB();
-    // By pbrt-v4's names, case-insensitive: "srgb"; null for "dci-p3", "rec2020", "aces2065-1"
-    // (not built) and anything else.
+    // DCI-P3's primaries and Rec. ITU-R BT.2020's, both under "stdillum-D65" (pbrt-v4's DCI-P3
+    // has D65 as white, not DCI's own); ACES2065-1 (AP0 primaries) under "illum-acesD60".
+    static const RGBColorSpace &DCI_P3();
+    static const RGBColorSpace &Rec2020();
+    static const RGBColorSpace &ACES2065_1();
+    // By pbrt-v4's names, case-insensitive: "srgb", "dci-p3", "rec2020", "aces2065-1"; null for
+    // anything else.
     static const RGBColorSpace *GetNamed(std::string_view name);
+    // The names GetNamed knows, quoted, for error messages.
+    static std::string NamesList();
 
     bool operator==(const RGBColorSpace &cs) const;
     bool operator!=(const RGBColorSpace &cs) const { return !(*this == cs); }
 
     std::string ToString() const;
-    // pbrt-v4's name of the space ("srgb"), "custom" for one built by hand.
-    std::string_view Name() const { return *this == sRGB() ? "srgb" : "custom"; }
+    // pbrt-v4's name of the space ("srgb", ...), "custom" for one built by hand.
+    std::string_view Name() const;
 
     Chromaticity r, g, b, w;
     DenselySampledSpectrum illuminant;

@@ -5,7 +5,7 @@
 // polynomial (color.h) whose colour under the colour space's illuminant is that RGB, by
 // trilinear interpolation in a table of precomputed coefficients. The table is optimized at
 // build time by cmd/rgb2spec_opt (see cmd/rgb2spec_opt.h for the fit) and compiled into the
-// library; only sRGB is built, the colour space the renderer uses.
+// library, one per colour space of pbrt-v4's.
 //
 // Table layout, as pbrt-v4's: coeffs[maxc][zi][yi][xi] holds (c0, c1, c2) for the RGB whose
 // largest component maxc is zNodes[zi] and whose next two components (cyclically) are
@@ -31,8 +31,12 @@ class RGBToSpectrumTable {
     RGBToSpectrumTable(const float *zNodes, const CoefficientArray *coeffs)
         : zNodes(zNodes), coeffs(coeffs) {}
 
-    // The table for linear sRGB under D65, built into the library.
+    // The tables built into the library: linear sRGB, DCI-P3 and Rec. 2020 under D65, and
+    // ACES2065-1 under ACES's D60 (cmd/rgb2spec_opt.h's kGamuts).
     static const RGBToSpectrumTable &sRGB();
+    static const RGBToSpectrumTable &DCI_P3();
+    static const RGBToSpectrumTable &Rec2020();
+    static const RGBToSpectrumTable &ACES2065_1();
 
     // The spectrum for a reflectance rgb in [0, 1]^3 (components outside are clamped to it, NaN
     // to 0). A grey r = g = b is exactly the constant spectrum r (+-infinite coefficients for 0
