@@ -41,6 +41,8 @@ void FuzzNanoVDB(std::span<const uint8_t> data);
 void FuzzSlice(std::span<const uint8_t> data);
 // A lens description made into a RealisticCamera, and rays through it (lens_target.cpp).
 void FuzzLens(std::span<const uint8_t> data);
+// An RGL .bsdf file read as a measured BRDF, evaluated and sampled (measured_target.cpp).
+void FuzzMeasured(std::span<const uint8_t> data);
 
 struct FuzzTarget {
     std::string_view name;  // as scripts/fuzz and tests/data/fuzz/<name>/ call it
@@ -51,6 +53,7 @@ struct FuzzTarget {
 inline constexpr FuzzTarget kFuzzTargets[] = {
     {"parser", FuzzParser}, {"ply", FuzzPly},     {"image", FuzzImage}, {"pngexr", FuzzPngExr},
     {"stb", FuzzStb},       {"fabric", FuzzFabric}, {"scene", FuzzScene},
-    {"nanovdb", FuzzNanoVDB}, {"slice", FuzzSlice}, {"lens", FuzzLens}};
+    {"nanovdb", FuzzNanoVDB}, {"slice", FuzzSlice}, {"lens", FuzzLens},
+    {"measured", FuzzMeasured}};
 
 }  // namespace pbrt::fuzz

@@ -3,6 +3,10 @@
 
 #include "pbrt_ext/util/error.h"
 
+#include <filesystem>
+#include <map>
+#include <mutex>
+
 namespace pbrt {
 
 namespace {
@@ -102,6 +106,31 @@ void SetShadingPerturbation(const ParameterDictionary &p, TextureResolver &textu
         ImageTextureCache::Get(ResolvePath(textures.Folder(), normalMap), ColorEncoding::Linear()));
 }
 
+// pbrt-v4's measured material: "filename", an RGL .bsdf file relative to the scene's folder. A
+// file is read once however many materials name it (while it stays unchanged on disk).
+MeasuredMaterial CreateMeasuredMaterial(const SceneEntity &e, const std::string &folder) {
+    const ParameterDictionary &p = e.parameters;
+    std::string filename = p.GetOneString("filename", "");
+    if (filename.empty())
+        throw ParseError(p.Loc("filename") ? *p.Loc("filename") : e.loc,
+                         "the measured material needs \"string filename\", an RGL .bsdf file");
+    const std::string path = ResolvePath(folder, filename);
+    static std::mutex mutex;
+    static std::map<std::string, std::shared_ptr<const MeasuredBxDFData>> loaded;
+    std::error_code ec;
+    std::string key = path + "|" + std::to_string(std::filesystem::file_size(path, ec)) + "|" +
+                      std::to_string(std::filesystem::last_write_time(path, ec).time_since_epoch().count());
+    std::lock_guard<std::mutex> lock(mutex);
+    if (auto it = loaded.find(key); it != loaded.end()) return MeasuredMaterial{it->second};
+    try {
+        return MeasuredMaterial{loaded[key] = MeasuredBxDFData::Read(path)};
+    } catch (const ParseError &) {
+        throw;  // the memory check's, located at the file
+    } catch (const std::runtime_error &error) {
+        throw ParseError(*p.Loc("filename"), error.what());
+    }
+}
+
 // pbrt-v4's precedence: sigma_a, else reflectance, else the melanins (eumelanin 1.3 when none
 // of them is given); what is shadowed is read, and warned about, as pbrt-v4 does.
 HairMaterial CreateHairMaterial(const SceneEntity &e, TextureResolver &textures) {
@@ -199,7 +228,9 @@ std::optional<Material> CreateMaterial(const SceneEntity &e, const std::string &
         return std::nullopt;
     } else if (type == "hair") {
         material = CreateHairMaterial(e, textures);
-    } else if (type == "measured" || type == "subsurface") {
+    } else if (type == "measured") {
+        material = CreateMeasuredMaterial(e, textures.Folder());
+    } else if (type == "subsurface") {
         WarningAt(e.loc, "Material \"%s\" is not supported: rendered as diffuse 0.5",
                   type.c_str());
         return DiffuseMaterial{};

@@ -117,6 +117,10 @@ SampledSpectrum HairSigmaAFromConcentration(Float eumelanin, Float pheomelanin,
     return RGBUnboundedSpectrum(RGBColorSpace::sRGB(), sigma_a).Sample(lambda);
 }
 
+BxDF MeasuredMaterial::GetBxDF(const TextureEvalContext &, SampledWavelengths &lambda) const {
+    return MeasuredBxDF(data.get(), lambda);
+}
+
 BxDF HairMaterial::GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const {
     Float bm = std::max<Float>(1e-2f, beta_m.Evaluate(ctx));
     Float bn = std::max<Float>(1e-2f, beta_n.Evaluate(ctx));

@@ -118,6 +118,14 @@ struct HairMaterial {
 SampledSpectrum HairSigmaAFromConcentration(Float eumelanin, Float pheomelanin,
                                             const SampledWavelengths &lambda);
 
+// pbrt-v4's MeasuredMaterial: an RGL .bsdf file (bxdfs/measured.h), shared by every material that
+// names the same file.
+struct MeasuredMaterial {
+    std::shared_ptr<const MeasuredBxDFData> data;
+
+    BxDF GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const;
+};
+
 // pbrt-v4's stochastic mix of two materials: at each hit one of them is chosen, the second with
 // probability `amount`, by a hash of the hit, so that the choice is the same for a given point and
 // direction. The scene resolves a mix to the chosen material before asking for a BSDF.
@@ -137,7 +145,7 @@ class Material {
     using Variant =
         std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, ThinDielectricMaterial,
                      DiffuseTransmissionMaterial, CoatedDiffuseMaterial, CoatedConductorMaterial,
-                     FabricMaterial, HairMaterial, MixMaterial>;
+                     FabricMaterial, HairMaterial, MeasuredMaterial, MixMaterial>;
     template <typename T>
     Material(T material) : material(std::move(material)) {}
 

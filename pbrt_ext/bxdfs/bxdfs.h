@@ -10,6 +10,7 @@
 #include "pbrt_ext/bxdfs/fabricdiffuse.h"
 #include "pbrt_ext/bxdfs/hair.h"
 #include "pbrt_ext/bxdfs/layered.h"
+#include "pbrt_ext/bxdfs/measured.h"
 #include "pbrt_ext/bxdfs/thindielectric.h"
 
 #include <string>
@@ -22,7 +23,7 @@ class BxDF {
     using Variant =
         std::variant<DiffuseBxDF, ConductorBxDF, DielectricBxDF, ThinDielectricBxDF,
                      DiffuseTransmissionBxDF, CoatedDiffuseBxDF, CoatedConductorBxDF, FabricBxDF,
-                     FabricDiffuseBxDF, HairBxDF>;
+                     FabricDiffuseBxDF, HairBxDF, MeasuredBxDF>;
 
     template <typename T>
     BxDF(T bxdf) : bxdf(std::move(bxdf)) {}
