@@ -8,6 +8,8 @@
 
 #include "pbrt_ext/bxdfs/measured.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <string>
 
@@ -39,7 +41,10 @@ void CheckBxDF(const MeasuredBxDFData &data) {
             if (!bs) continue;
             if (!FiniteNonNegative(bs->f) || !(bs->pdf > 0) || !std::isfinite(bs->pdf) ||
                 std::abs(Length(bs->wi) - 1) > 1e-3f || !SameHemisphere(wo, bs->wi))
-                ReportFinding("measured", "a sample that is not finite, of unit length and on wo's side");
+                ReportFinding("measured", fmt::format("a sample that is not finite, of unit length and on wo's "
+                                                      "side: wo ({}, {}, {}) wi ({}, {}, {}) f {} pdf {}",
+                                                      wo.x, wo.y, wo.z, bs->wi.x, bs->wi.y, bs->wi.z,
+                                                      bs->f.ToString(), bs->pdf));
         }
     }
 }

@@ -1,7 +1,11 @@
 // Materials from scene-file entities: pbrt-v4's parameters and defaults, and our "fabric".
 #include "pbrt_ext/create.h"
 
+#include "pbrt_ext/scatteringpresets.h"
+#include "pbrt_ext/util/colorspace.h"
 #include "pbrt_ext/util/error.h"
+
+#include <fmt/format.h>
 
 #include <filesystem>
 #include <map>
@@ -131,6 +135,56 @@ MeasuredMaterial CreateMeasuredMaterial(const SceneEntity &e, const std::string 
     }
 }
 
+// pbrt-v4's four ways to give a subsurface material's scattering, in its order: a measured
+// "name" (reduced coefficients, so g is 0), "sigma_a" with "sigma_s", a diffuse "reflectance"
+// with a mean free path "mfp" (1 by default), or else pbrt-v4's default (whole milk in mm^-1).
+// What pbrt-v4 accepts but no material can be (a non-positive eta, a negative scale, |g| >= 1)
+// is an error at the parameter.
+SubsurfaceMaterial CreateSubsurfaceMaterial(const SceneEntity &e, TextureResolver &textures) {
+    const ParameterDictionary &p = e.parameters;
+    auto locOf = [&](const char *name) { return p.Loc(name) ? *p.Loc(name) : e.loc; };
+    SubsurfaceMaterial m;
+    Float g = p.GetOneFloat("g", 0);
+    if (std::string name = p.GetOneString("name", ""); !name.empty()) {
+        std::optional<std::pair<Spectrum, Spectrum>> measured = MeasuredScattering(name);
+        if (!measured)
+            throw ParseError(locOf("name"), "unknown subsurface \"name\" \"" + name +
+                                                "\"; expected one of " + MeasuredScatteringNames());
+        if (g != 0) WarningAt(locOf("g"), "subsurface: \"g\" is ignored with a named measurement");
+        g = 0;
+        m.sigma_a = SpectrumTexture(measured->first);
+        m.sigma_s = SpectrumTexture(measured->second);
+    } else if (p.HasParameter("sigma_a") || p.HasParameter("sigma_s")) {
+        for (auto [given, other] : {std::pair{"sigma_a", "sigma_s"}, {"sigma_s", "sigma_a"}})
+            if (p.HasParameter(given) && !p.HasParameter(other))
+                throw ParseError(locOf(given), std::string("subsurface: \"") + given +
+                                                   "\" without \"" + other + "\"");
+        m.sigma_a = textures.GetSpectrumTexture(p, "sigma_a", Spectrum(0.f), SpectrumType::Unbounded);
+        m.sigma_s = textures.GetSpectrumTexture(p, "sigma_s", Spectrum(0.f), SpectrumType::Unbounded);
+    } else if (p.HasParameter("reflectance")) {
+        m.reflectance = textures.GetSpectrumTexture(p, "reflectance", Spectrum(0.f), SpectrumType::Albedo);
+        m.mfp = textures.GetSpectrumTexture(p, "mfp", Spectrum(1.f), SpectrumType::Unbounded);
+    } else {
+        const RGBColorSpace &srgb = RGBColorSpace::sRGB();
+        m.sigma_a = SpectrumTexture(Spectrum(RGBUnboundedSpectrum(srgb, RGB(.0011f, .0024f, .014f))));
+        m.sigma_s = SpectrumTexture(Spectrum(RGBUnboundedSpectrum(srgb, RGB(2.55f, 3.21f, 3.77f))));
+    }
+    m.scale = p.GetOneFloat("scale", 1);
+    m.eta = p.GetOneFloat("eta", 1.33f);
+    if (!(m.scale >= 0) || std::isinf(m.scale))
+        throw ParseError(locOf("scale"), fmt::format("subsurface \"scale\" is {}; expected a finite value >= 0", m.scale));
+    if (!(m.eta > 0) || std::isinf(m.eta))
+        throw ParseError(locOf("eta"), fmt::format("subsurface \"eta\" is {}; expected a finite value > 0", m.eta));
+    if (!(g > -1 && g < 1))
+        throw ParseError(locOf("g"), fmt::format("subsurface \"g\" is {}; expected -1 < g < 1", g));
+    Roughness roughness = GetRoughness(p, textures);
+    m.uRoughness = roughness.u;
+    m.vRoughness = roughness.v;
+    m.remapRoughness = p.GetOneBool("remaproughness", true);
+    m.table = std::make_shared<const BSSRDFTable>(g, m.eta);
+    return m;
+}
+
 // pbrt-v4's precedence: sigma_a, else reflectance, else the melanins (eumelanin 1.3 when none
 // of them is given); what is shadowed is read, and warned about, as pbrt-v4 does.
 HairMaterial CreateHairMaterial(const SceneEntity &e, TextureResolver &textures) {
@@ -231,9 +285,7 @@ std::optional<Material> CreateMaterial(const SceneEntity &e, const std::string &
     } else if (type == "measured") {
         material = CreateMeasuredMaterial(e, textures.Folder());
     } else if (type == "subsurface") {
-        WarningAt(e.loc, "Material \"%s\" is not supported: rendered as diffuse 0.5",
-                  type.c_str());
-        return DiffuseMaterial{};
+        material = CreateSubsurfaceMaterial(e, textures);
     } else {
         throw ParseError(e.loc, "unknown Material \"" + type + "\"");
     }

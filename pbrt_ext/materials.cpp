@@ -121,6 +121,25 @@ BxDF MeasuredMaterial::GetBxDF(const TextureEvalContext &, SampledWavelengths &l
     return MeasuredBxDF(data.get(), lambda);
 }
 
+BxDF SubsurfaceMaterial::GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &) const {
+    return DielectricBxDF(eta, Microfacets(uRoughness, vRoughness, remapRoughness, ctx));
+}
+
+TabulatedBSSRDF SubsurfaceMaterial::GetBSSRDF(const SurfaceInteraction &si,
+                                              SampledWavelengths &lambda) const {
+    TextureEvalContext ctx(si);
+    SampledSpectrum sig_a, sig_s;
+    if (sigma_a && sigma_s) {
+        sig_a = ClampZero(scale * sigma_a->Evaluate(ctx, lambda));
+        sig_s = ClampZero(scale * sigma_s->Evaluate(ctx, lambda));
+    } else {
+        SampledSpectrum mfree = ClampZero(scale * mfp.Evaluate(ctx, lambda));
+        SampledSpectrum r = Reflectance(*reflectance, ctx, lambda);
+        SubsurfaceFromDiffuse(*table, r, mfree, &sig_a, &sig_s);
+    }
+    return TabulatedBSSRDF(si.p, si.shading.n, eta, sig_a, sig_s, table.get());
+}
+
 BxDF HairMaterial::GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const {
     Float bm = std::max<Float>(1e-2f, beta_m.Evaluate(ctx));
     Float bn = std::max<Float>(1e-2f, beta_n.Evaluate(ctx));

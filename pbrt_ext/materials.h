@@ -6,6 +6,7 @@
 #pragma once
 
 #include "pbrt_ext/bsdf.h"
+#include "pbrt_ext/bssrdf.h"
 #include "pbrt_ext/bxdfs/bxdfs.h"
 #include "pbrt_ext/interaction.h"
 #include "pbrt_ext/textures.h"
@@ -126,6 +127,23 @@ struct MeasuredMaterial {
     BxDF GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const;
 };
 
+// pbrt-v4's SubsurfaceMaterial: a dielectric boundary (eta, roughness) over a translucent body
+// whose BSSRDF (bssrdf.h) is given by sigma_a and sigma_s (per unit length, times scale), or by
+// the diffuse reflectance it should have and a mean free path (inverted through the table).
+// Its table depends on g and eta only and is made once, with the material.
+struct SubsurfaceMaterial {
+    Float scale = 1, eta = 1.33f;
+    std::optional<SpectrumTexture> sigma_a, sigma_s;  // both, or neither
+    std::optional<SpectrumTexture> reflectance;       // with mfp, when sigma_a and sigma_s are not given
+    SpectrumTexture mfp = Spectrum(1.f);
+    FloatTexture uRoughness = 0, vRoughness = 0;
+    bool remapRoughness = true;
+    std::shared_ptr<const BSSRDFTable> table;
+
+    BxDF GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const;
+    TabulatedBSSRDF GetBSSRDF(const SurfaceInteraction &si, SampledWavelengths &lambda) const;
+};
+
 // pbrt-v4's stochastic mix of two materials: at each hit one of them is chosen, the second with
 // probability `amount`, by a hash of the hit, so that the choice is the same for a given point and
 // direction. The scene resolves a mix to the chosen material before asking for a BSDF.
@@ -145,7 +163,7 @@ class Material {
     using Variant =
         std::variant<DiffuseMaterial, ConductorMaterial, DielectricMaterial, ThinDielectricMaterial,
                      DiffuseTransmissionMaterial, CoatedDiffuseMaterial, CoatedConductorMaterial,
-                     FabricMaterial, HairMaterial, MeasuredMaterial, MixMaterial>;
+                     FabricMaterial, HairMaterial, MeasuredMaterial, SubsurfaceMaterial, MixMaterial>;
     template <typename T>
     Material(T material) : material(std::move(material)) {}
 
@@ -154,6 +172,12 @@ class Material {
     BSDF GetBSDF(const SurfaceInteraction &si, SampledWavelengths &lambda) const;
 
     const MixMaterial *AsMix() const { return std::get_if<MixMaterial>(&material); }
+    // The BSSRDF under the surface at a hit, for a subsurface material; none for the others.
+    std::optional<TabulatedBSSRDF> GetBSSRDF(const SurfaceInteraction &si, SampledWavelengths &lambda) const {
+        if (const auto *m = std::get_if<SubsurfaceMaterial>(&material)) return m->GetBSSRDF(si, lambda);
+        return std::nullopt;
+    }
+    bool HasSubsurface() const { return std::holds_alternative<SubsurfaceMaterial>(material); }
 
     // pbrt-v4's "texture displacement" (bump mapping) and "string normalmap" (a tangent-space
     // normal map read with linear encoding). Either perturbs the shading frame of every BSDF.

@@ -119,8 +119,9 @@ Integrator ChooseIntegrator(Scene &scene) {
         return LightPathIntegrator(scene, o);
     case IntegratorType::SPPM:  // rendered by RenderSPPM
     case IntegratorType::VolPath:
-        // The volumetric path tracer only where there are media to render.
-        if (!scene.media.empty())
+        // The volumetric path tracer only where there are media or subsurface materials to
+        // render.
+        if (!scene.media.empty() || scene.HasSubsurface())
             return VolPathIntegrator(scene, o);
         [[fallthrough]];
     case IntegratorType::Path:

@@ -85,13 +85,32 @@ class Scene {
     // made only for the g-buffer film.
     std::optional<VisibleSurface> FirstVisibleSurface(RayDifferential ray, SampledWavelengths lambda) const;
     std::optional<BSDF> GetBSDF(const SurfaceInteraction &si, SampledWavelengths &lambda) const {
+        int index = ResolveMaterial(si);
+        if (index < 0) return std::nullopt;
+        return materials[index].GetBSDF(si, lambda);
+    }
+    // The BSSRDF under a hit's surface, mixes resolved as GetBSDF resolves them; none unless its
+    // material is a subsurface one.
+    std::optional<TabulatedBSSRDF> GetBSSRDF(const SurfaceInteraction &si, SampledWavelengths &lambda) const {
+        int index = ResolveMaterial(si);
+        if (index < 0) return std::nullopt;
+        return materials[index].GetBSSRDF(si, lambda);
+    }
+    // Whether a material scatters under its surface (volpath then renders the scene).
+    bool HasSubsurface() const {
+        for (const Material &m : materials)
+            if (m.HasSubsurface()) return true;
+        return false;
+    }
+    // The material of a hit with mixes resolved (deterministically, per hit); -1 for none.
+    int ResolveMaterial(const SurfaceInteraction &si) const {
         int index = si.materialIndex;
         while (index >= 0)
             if (const MixMaterial *mix = materials[index].AsMix())
                 index = mix->Choose(si);
             else
-                return materials[index].GetBSDF(si, lambda);
-        return std::nullopt;
+                return index;
+        return -1;
     }
 
     EmbreeAggregate aggregate;

@@ -47,15 +47,8 @@ SampledSpectrum VolPathIntegrator::Li(RayDifferential ray, SampledWavelengths &l
         if (options.regularize && path.anyNonSpecularBounces)
             bsdf.Regularize();
 
-        if (IsNonSpecular(bsdf.Flags()) && !scene.lights.empty()) {
-            Vector3f ns(si.shading.n);
-            auto scatter = [&](Vector3f wi) {
-                return std::pair(bsdf.f(si.wo, wi) * AbsDot(wi, ns), bsdf.PDF(si.wo, wi));
-            };
-            auto spawnTo = [&](Point3f pLight) { return si.SpawnRayTo(pLight); };
-            path.L += SampleLd(LightSampleContext(si), scatter, spawnTo, lambda, sampler,
-                               path.beta, path.r_u, rays);
-        }
+        if (IsNonSpecular(bsdf.Flags()) && !scene.lights.empty())
+            path.L += SampleLdAtSurface(si, bsdf, lambda, sampler, path, rays);
         path.prevCtx = LightSampleContext(si);
 
         Vector3f wo = si.wo;
@@ -70,6 +63,10 @@ SampledSpectrum VolPathIntegrator::Li(RayDifferential ray, SampledWavelengths &l
         if (bs->IsTransmission())
             path.etaScale *= Sqr(bs->eta);
         path.ray = si.SpawnRay(path.ray, bs->wi, bs->flags, bs->eta);
+        if (bs->IsTransmission())
+            if (std::optional<TabulatedBSSRDF> bssrdf = scene.GetBSSRDF(si, lambda))
+                if (!ScatterSubsurface(path, si, *bssrdf, lambda, sampler, rays))
+                    break;
 
         // Russian roulette on the throughput over its probability, without refraction's
         // radiance scaling.
@@ -85,6 +82,76 @@ SampledSpectrum VolPathIntegrator::Li(RayDifferential ray, SampledWavelengths &l
         }
     }
     return path.L;
+}
+
+SampledSpectrum VolPathIntegrator::SampleLdAtSurface(const SurfaceInteraction &si, const BSDF &bsdf,
+                                                     const SampledWavelengths &lambda,
+                                                     Sampler &sampler, const PathState &path,
+                                                     RayCounts &rays) const {
+    Vector3f ns(si.shading.n);
+    auto scatter = [&](Vector3f wi) {
+        return std::pair(bsdf.f(si.wo, wi) * AbsDot(wi, ns), bsdf.PDF(si.wo, wi));
+    };
+    auto spawnTo = [&](Point3f pLight) { return si.SpawnRayTo(pLight); };
+    return SampleLd(LightSampleContext(si), scatter, spawnTo, lambda, sampler, path.beta, path.r_u,
+                    rays);
+}
+
+bool VolPathIntegrator::ScatterSubsurface(PathState &path, const SurfaceInteraction &si,
+                                          const TabulatedBSSRDF &bssrdf, SampledWavelengths &lambda,
+                                          Sampler &sampler, RayCounts &rays) const {
+    Float uAxis = sampler.Get1D();
+    Point2f uDisk = sampler.Get2D();
+    std::optional<BSSRDFProbeSegment> probe = bssrdf.SampleSp(uAxis, uDisk);
+    if (!probe)
+        return false;
+    // Every surface of the material along the probe is a candidate exit; one is kept with equal
+    // probability by reservoir sampling, its RNG seeded by the sampler as pbrt-v4 seeds it. The
+    // walk stops after kMaxProbeHits surfaces, which no closed object comes near.
+    constexpr int kMaxProbeHits = 1024;
+    RNG rng(Hash(sampler.Get1D()));
+    std::optional<SurfaceInteraction> exit;
+    int candidates = 0;
+    SurfaceInteraction base;
+    base.p = probe->p0;
+    base.time = path.ray.time;
+    for (int i = 0; i < kMaxProbeHits; ++i) {
+        Ray r = base.SpawnRayTo(probe->p1);
+        if (r.d == Vector3f(0, 0, 0))
+            break;
+        ++rays.closest;
+        pstd::optional<ShapeIntersection> hit = scene.Intersect(r, 1);
+        if (!hit)
+            break;
+        base = hit->intr;
+        if (hit->intr.materialIndex == si.materialIndex && rng.Uniform<Float>() * Float(++candidates) < 1)
+            exit = hit->intr;
+    }
+    if (!exit)
+        return false;
+    SampledSpectrum Sp = bssrdf.Sp(exit->p), pdf = bssrdf.PDF_Sp(exit->p, exit->n);
+    if (!Sp || !pdf || !(pdf[0] > 0))
+        return false;
+    path.beta *= Sp * Float(candidates) / pdf[0];
+    path.r_u *= pdf / pdf[0];
+
+    // The exit point's BSDF, seen from its shading normal.
+    SurfaceInteraction &pi = *exit;
+    pi.wo = Vector3f(pi.shading.n);
+    BSDF Sw(pi.shading.n, pi.shading.dpdu, NormalizedFresnelBxDF(bssrdf.Eta()));
+    path.anyNonSpecularBounces = true;
+    path.prevCtx = LightSampleContext(pi);
+    if (!scene.lights.empty())
+        path.L += SampleLdAtSurface(pi, Sw, lambda, sampler, path, rays);
+    Float u = sampler.Get1D();
+    pstd::optional<BSDFSample> bs = Sw.Sample_f(pi.wo, u, sampler.Get2D());
+    if (!bs)
+        return false;
+    path.beta *= bs->f * AbsDot(bs->wi, Vector3f(pi.shading.n)) / bs->pdf;
+    path.r_l = path.r_u / bs->pdf;
+    path.specularBounce = false;
+    path.ray = pi.SpawnRay(path.ray, bs->wi, bs->flags, bs->eta);
+    return true;
 }
 
 VolPathIntegrator::MediumOutcome VolPathIntegrator::SampleMedium(PathState &path, Float tMax,

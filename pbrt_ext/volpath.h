@@ -7,10 +7,12 @@
 // (unidirectional) and r_l (light sampling) per wavelength, so that the final division by
 // their average is spectral MIS over the wavelengths (chromatic media stay free of colour
 // noise) and, at emitters, the balance heuristic between BSDF or phase sampling and light
-// sampling, as pbrt-v4 combines them.
+// sampling, as pbrt-v4 combines them. Under a subsurface material's boundary, light leaves
+// through the BSSRDF's exit points, as pbrt-v4's volpath (and only it) renders them.
 #pragma once
 
 #include "pbrt_ext/bsdf.h"
+#include "pbrt_ext/bssrdf.h"
 #include "pbrt_ext/integrators.h"
 #include "pbrt_ext/interaction.h"
 #include "pbrt_ext/media.h"
@@ -45,6 +47,17 @@ class VolPathIntegrator {
     // scattering (with next-event estimation and a new direction) or null scattering.
     MediumOutcome SampleMedium(PathState &path, Float tMax, SampledWavelengths &lambda,
                                Sampler &sampler, RayCounts &rays) const;
+    // Next-event estimation at a surface vertex with its BSDF.
+    SampledSpectrum SampleLdAtSurface(const SurfaceInteraction &si, const BSDF &bsdf,
+                                      const SampledWavelengths &lambda, Sampler &sampler,
+                                      const PathState &path, RayCounts &rays) const;
+    // Subsurface scattering after the path refracted into a subsurface material at si (pbrt-v4's
+    // volpath): a probe segment for the exit point, one of the material's surfaces along it
+    // chosen uniformly, the BSSRDF's weight over its sampling density (with spectral MIS over the
+    // wavelengths' densities), next-event estimation at the exit and a new direction from the
+    // exit's BSDF. False when the path ends there.
+    bool ScatterSubsurface(PathState &path, const SurfaceInteraction &si, const TabulatedBSSRDF &bssrdf,
+                           SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays) const;
     // Emission Le reached by the path, from light lightIndex, weighted against light sampling.
     void AddEmitted(PathState &path, SampledSpectrum Le, int lightIndex) const;
     // Next-event estimation at a surface or medium vertex: one light sample, attenuated by

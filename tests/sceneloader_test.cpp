@@ -107,7 +107,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                          "lights-images.pbrt", "portal-skylight.pbrt",
                                          "realistic-camera.pbrt", "spectral-film.pbrt",
                                          "gbuffer-film.pbrt", "displacement.pbrt",
-                                         "colorspaces.pbrt", "measured.pbrt"));
+                                         "colorspaces.pbrt", "measured.pbrt",
+                                         "subsurface.pbrt"));
 
 // Curves of each type with hair, a moving cylinder, a moving spherical camera, a bump map (ray
 // differentials), tangents S and a subdivision surface, all in one scene (also a fuzz seed).

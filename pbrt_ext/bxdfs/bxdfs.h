@@ -11,6 +11,7 @@
 #include "pbrt_ext/bxdfs/hair.h"
 #include "pbrt_ext/bxdfs/layered.h"
 #include "pbrt_ext/bxdfs/measured.h"
+#include "pbrt_ext/bxdfs/normalizedfresnel.h"
 #include "pbrt_ext/bxdfs/thindielectric.h"
 
 #include <string>
@@ -23,7 +24,7 @@ class BxDF {
     using Variant =
         std::variant<DiffuseBxDF, ConductorBxDF, DielectricBxDF, ThinDielectricBxDF,
                      DiffuseTransmissionBxDF, CoatedDiffuseBxDF, CoatedConductorBxDF, FabricBxDF,
-                     FabricDiffuseBxDF, HairBxDF, MeasuredBxDF>;
+                     FabricDiffuseBxDF, HairBxDF, MeasuredBxDF, NormalizedFresnelBxDF>;
 
     template <typename T>
     BxDF(T bxdf) : bxdf(std::move(bxdf)) {}

@@ -17,8 +17,9 @@
 // pbrt-v4 computes it. Reflection only; two-sided as pbrt-v4 (wo below the surface is mirrored).
 //
 // Differs from pbrt-v4: Sample_f returns f() and PDF() of the direction it made, so that the
-// three agree to the bit (pbrt-v4 returns the values along the warp, equal up to rounding), and
-// a sigma of 0 gives f = 0 rather than a division by zero.
+// three agree to the bit (pbrt-v4 returns the values along the warp, equal up to rounding); a
+// sigma of 0 gives f = 0 rather than a division by zero, and so does a file whose (finite)
+// values are large enough that f or the pdf overflows (fuzz finding, docs/fuzzing.md).
 #pragma once
 
 #include "pbrt_ext/base/bxdf.h"
@@ -30,6 +31,7 @@
 #include "pbrt_ext/util/spectrum.h"
 #include "pbrt_ext/util/vecmath.h"
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -70,7 +72,10 @@ class MeasuredBxDF {
         Float sigma = brdf->sigma.Evaluate(a.u_wo, {});
         if (!(sigma > 0)) return SampledSpectrum(0.f);
         Point2f u = brdf->vndf.Invert(a.u_wm, {a.phi_o, a.theta_o}).p;
-        return Reflectance(u, a) * (brdf->ndf.Evaluate(a.u_wm, {}) / (4 * sigma * CosTheta(wi)));
+        SampledSpectrum value = Reflectance(u, a) * (brdf->ndf.Evaluate(a.u_wm, {}) / (4 * sigma * CosTheta(wi)));
+        for (int i = 0; i < NSpectrumSamples; ++i)
+            if (!std::isfinite(value[i])) value[i] = 0;  // a file's values that overflow (see above)
+        return value;
     }
 
     pstd::optional<BSDFSample> Sample_f(
@@ -107,7 +112,8 @@ class MeasuredBxDF {
         Float lumPDF = brdf->luminance.Evaluate(inverse.p, {a.phi_o, a.theta_o});
         Float sinTheta_m = std::sqrt(Sqr(wm.x) + Sqr(wm.y));
         Float jacobian = 4 * Dot(wo, wm) * std::max<Float>(2 * Sqr(Pi) * a.u_wm[0] * sinTheta_m, 1e-6f);
-        return inverse.pdf * lumPDF / jacobian;
+        Float pdf = inverse.pdf * lumPDF / jacobian;
+        return std::isfinite(pdf) ? pdf : 0;
     }
 
     void Regularize() {}
