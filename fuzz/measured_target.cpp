@@ -33,7 +33,8 @@ void CheckBxDF(const MeasuredBxDFData &data) {
             SampledSpectrum f = bxdf.f(wo, wi, TransportMode::Radiance);
             Float pdf = bxdf.PDF(wo, wi, TransportMode::Radiance);
             if (!FiniteNonNegative(f) || !std::isfinite(pdf) || pdf < 0)
-                ReportFinding("measured", "f or PDF not finite and non-negative");
+                ReportFinding("measured", fmt::format("f {} or PDF {} not finite and non-negative",
+                                                      f.ToString(), pdf));
         }
         for (int i = 0; i < 16; ++i) {
             Point2f u((i % 4 + 0.5f) / 4, (i / 4 + 0.5f) / 4);

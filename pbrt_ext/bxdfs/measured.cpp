@@ -117,9 +117,11 @@ std::shared_ptr<const MeasuredBxDFData> MeasuredBxDFData::Read(const std::string
     };
     using Axes2 = std::array<std::vector<float>, 2>;
     using Axes3 = std::array<std::vector<float>, 3>;
-    data->ndf = grid(ndf, std::array<std::vector<float>, 0>{}, false, file.Floats("ndf", 2));
-    std::vector<float> sigmaValues = file.Floats("sigma", 2);
+    // A distribution of normals and its projected area are never negative.
+    std::vector<float> ndfValues = file.Floats("ndf", 2), sigmaValues = file.Floats("sigma", 2);
+    for (float v : ndfValues) file.Expect(v >= 0, "field \"ndf\" holds a negative value");
     for (float v : sigmaValues) file.Expect(v >= 0, "field \"sigma\" holds a negative value");
+    data->ndf = grid(ndf, std::array<std::vector<float>, 0>{}, false, ndfValues);
     data->sigma = grid(sigma, std::array<std::vector<float>, 0>{}, false, sigmaValues);
     data->vndf = grid(vndf, Axes2{phi_i, theta_i}, true, file.Floats("vndf", 4));
     data->luminance = grid(luminance, Axes2{phi_i, theta_i}, true, file.Floats("luminance", 4));

@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <span>
+#include <utility>
 
 namespace pbrt {
 
@@ -102,7 +103,9 @@ inline Float InvertCatmullRom(std::span<const Float> nodes, std::span<const Floa
     if (!(u < f.back())) return nodes.back();
     int i = detail::FindInterval(int(f.size()), [&](int k) { return f[size_t(k)] <= u; });
     auto value = [&](int k) { return f[size_t(k)]; };
-    auto [d0, d1] = catmullrom::EndSlopes(nodes, value, i);
+    // Plain variables, not a structured binding: the lambda below captures them (clang 14).
+    const std::pair<Float, Float> slopes = catmullrom::EndSlopes(nodes, value, i);
+    const Float d0 = slopes.first, d1 = slopes.second;
     Float f0 = f[size_t(i)], f1 = f[size_t(i) + 1];
     Float t = catmullrom::NewtonBisection([&](Float s) {
         Float s2 = s * s, s3 = s2 * s;
@@ -136,7 +139,9 @@ inline Float SampleCatmullRom2D(std::span<const Float> nodes1, std::span<const F
     int i = detail::FindInterval(n, [&](int k) { return interpolate(cdf, k) <= u; });
     Float x0 = nodes2[size_t(i)], x1 = nodes2[size_t(i) + 1], width = x1 - x0;
     Float f0 = interpolate(values, i), f1 = interpolate(values, i + 1);
-    auto [d0, d1] = catmullrom::EndSlopes(nodes2, [&](int k) { return interpolate(values, k); }, i);
+    const std::pair<Float, Float> slopes =
+        catmullrom::EndSlopes(nodes2, [&](int k) { return interpolate(values, k); }, i);
+    const Float d0 = slopes.first, d1 = slopes.second;
     u = (u - interpolate(cdf, i)) / width;
     // The segment's integral from 0 to t and its derivative, the spline itself.
     Float t = catmullrom::NewtonBisection([&](Float s) {
