@@ -27,7 +27,8 @@ void CheckBxDF(const MeasuredBxDFData &data) {
     const SampledWavelengths lambda = SampledWavelengths::SampleUniform(0.3f);
     const MeasuredBxDF bxdf(&data, lambda);
     const Vector3f directions[] = {Vector3f(0, 0, 1), Normalize(Vector3f(0.5f, 0.2f, 0.8f)),
-                                   Normalize(Vector3f(-0.9f, 0.3f, 0.1f)), Normalize(Vector3f(0.3f, -0.4f, -0.7f))};
+                                   Normalize(Vector3f(-0.9f, 0.3f, 0.1f)),
+                                   Normalize(Vector3f(0.3f, -0.4f, -0.7f))};
     for (Vector3f wo : directions) {
         for (Vector3f wi : directions) {
             SampledSpectrum f = bxdf.f(wo, wi, TransportMode::Radiance);
@@ -42,10 +43,11 @@ void CheckBxDF(const MeasuredBxDFData &data) {
             if (!bs) continue;
             if (!FiniteNonNegative(bs->f) || !(bs->pdf > 0) || !std::isfinite(bs->pdf) ||
                 std::abs(Length(bs->wi) - 1) > 1e-3f || !SameHemisphere(wo, bs->wi))
-                ReportFinding("measured", fmt::format("a sample that is not finite, of unit length and on wo's "
-                                                      "side: wo ({}, {}, {}) wi ({}, {}, {}) f {} pdf {}",
-                                                      wo.x, wo.y, wo.z, bs->wi.x, bs->wi.y, bs->wi.z,
-                                                      bs->f.ToString(), bs->pdf));
+                ReportFinding("measured",
+                              fmt::format("a sample that is not finite, of unit length and on wo's "
+                                          "side: wo ({}, {}, {}) wi ({}, {}, {}) f {} pdf {}",
+                                          wo.x, wo.y, wo.z, bs->wi.x, bs->wi.y, bs->wi.z,
+                                          bs->f.ToString(), bs->pdf));
         }
     }
 }

@@ -78,7 +78,8 @@ BSSRDFTable::BSSRDFTable(Float g, Float eta)
     : rhoSamples(100), radiusSamples(64), profile(100 * 64), rhoEff(100), profileCDF(100 * 64) {
     radiusSamples[0] = 0;
     radiusSamples[1] = 2.5e-3f;
-    for (size_t i = 2; i < radiusSamples.size(); ++i) radiusSamples[i] = radiusSamples[i - 1] * 1.2f;
+    for (size_t i = 2; i < radiusSamples.size(); ++i)
+        radiusSamples[i] = radiusSamples[i - 1] * 1.2f;
     const size_t nRho = rhoSamples.size(), nRadius = radiusSamples.size();
     for (size_t i = 0; i < nRho; ++i)
         rhoSamples[i] = (1 - std::exp(-8 * Float(i) / Float(nRho - 1))) / (1 - std::exp(-8.f));
@@ -89,7 +90,8 @@ BSSRDFTable::BSSRDFTable(Float g, Float eta)
                                        (BeamDiffusionSS(rho, 1 - rho, g, eta, r) +
                                         BeamDiffusionMS(rho, 1 - rho, g, eta, r));
         }
-        rhoEff[i] = IntegrateCatmullRom(radiusSamples, std::span<const Float>(&profile[i * nRadius], nRadius),
+        rhoEff[i] = IntegrateCatmullRom(radiusSamples,
+                                        std::span<const Float>(&profile[i * nRadius], nRadius),
                                         std::span<Float>(&profileCDF[i * nRadius], nRadius));
     });
 }
@@ -174,7 +176,8 @@ SampledSpectrum TabulatedBSSRDF::PDF_Sp(Point3f pi, Normal3f ni) const {
                             std::sqrt(Sqr(d.x) + Sqr(d.y))};
     const Float axisProb[3] = {0.25f, 0.25f, 0.5f};
     SampledSpectrum pdf(0.f);
-    for (int axis = 0; axis < 3; ++axis) pdf += PDF_Sr(rProj[axis]) * (std::abs(n[axis]) * axisProb[axis]);
+    for (int axis = 0; axis < 3; ++axis)
+        pdf += PDF_Sr(rProj[axis]) * (std::abs(n[axis]) * axisProb[axis]);
     return pdf;
 }
 

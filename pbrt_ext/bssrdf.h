@@ -69,7 +69,8 @@ class TabulatedBSSRDF {
                     const SampledSpectrum &sigma_s, const BSSRDFTable *table)
         : po(po), ns(ns), eta(eta), table(table) {
         sigma_t = sigma_a + sigma_s;
-        for (int i = 0; i < NSpectrumSamples; ++i) rho[i] = sigma_t[i] != 0 ? sigma_s[i] / sigma_t[i] : 0;
+        for (int i = 0; i < NSpectrumSamples; ++i)
+            rho[i] = sigma_t[i] != 0 ? sigma_s[i] / sigma_t[i] : 0;
     }
 
     SampledSpectrum Sp(Point3f pi) const { return Sr(Distance(po, pi)); }

@@ -33,7 +33,8 @@ class Fields {
     std::vector<float> Floats(const std::string &name, size_t rank) const {
         std::span<const float> v = Get(name, TensorField::Type::Float32, rank).Floats();
         for (float x : v)
-            if (!std::isfinite(x)) Fail(fmt::format("field \"{}\" holds a value that is not finite", name));
+            if (!std::isfinite(x))
+                Fail(fmt::format("field \"{}\" holds a value that is not finite", name));
         return {v.begin(), v.end()};
     }
     // A one-dimensional float32 field of increasing values (a grid's parameter).
@@ -68,7 +69,8 @@ std::shared_ptr<const MeasuredBxDFData> MeasuredBxDFData::Read(const std::string
     // What the file's size bounds: the file and its fields (ReadTensorFile checks those), the
     // copies of the tables, and the cumulative sums of the densities.
     if (std::optional<uint64_t> size = RegularFileSize(path, nullptr))
-        CheckMemory(FileLoc{path, 0, 0}, "the measured BRDF's tables", SaturatingProduct({*size, 6}));
+        CheckMemory(FileLoc{path, 0, 0}, "the measured BRDF's tables",
+                    SaturatingProduct({*size, 6}));
     const Fields file(path);
     using Type = TensorField::Type;
     std::vector<float> phi_i = file.Axis("phi_i"), theta_i = file.Axis("theta_i");
@@ -79,7 +81,8 @@ std::shared_ptr<const MeasuredBxDFData> MeasuredBxDFData::Read(const std::string
     const TensorField &jacobian = file.Get("jacobian", Type::UInt8, 1);
     file.Expect(jacobian.shape[0] == 1, "field \"jacobian\" is not one value");
 
-    const TensorField &ndf = file.Get("ndf", Type::Float32, 2), &sigma = file.Get("sigma", Type::Float32, 2);
+    const TensorField &ndf = file.Get("ndf", Type::Float32, 2),
+                      &sigma = file.Get("sigma", Type::Float32, 2);
     const TensorField &vndf = file.Get("vndf", Type::Float32, 4);
     const TensorField &luminance = file.Get("luminance", Type::Float32, 4);
     const TensorField &spectra = file.Get("spectra", Type::Float32, 5);
@@ -88,9 +91,10 @@ std::shared_ptr<const MeasuredBxDFData> MeasuredBxDFData::Read(const std::string
                 "field \"vndf\" is " + Shape(vndf) + ", not per phi_i and theta_i");
     file.Expect(luminance.shape[0] == nPhi && luminance.shape[1] == nTheta,
                 "field \"luminance\" is " + Shape(luminance) + ", not per phi_i and theta_i");
-    file.Expect(spectra.shape[0] == nPhi && spectra.shape[1] == nTheta &&
-                    spectra.shape[2] == data->wavelengths.size(),
-                "field \"spectra\" is " + Shape(spectra) + ", not per phi_i, theta_i and wavelength");
+    file.Expect(
+        spectra.shape[0] == nPhi && spectra.shape[1] == nTheta &&
+            spectra.shape[2] == data->wavelengths.size(),
+        "field \"spectra\" is " + Shape(spectra) + ", not per phi_i, theta_i and wavelength");
     file.Expect(luminance.shape[2] == spectra.shape[3] && luminance.shape[3] == spectra.shape[4],
                 "fields \"luminance\" and \"spectra\" have grids of different sizes");
     for (const TensorField *f : {&ndf, &sigma, &vndf, &luminance, &spectra}) {
@@ -104,9 +108,11 @@ std::shared_ptr<const MeasuredBxDFData> MeasuredBxDFData::Read(const std::string
         // pbrt-v4 reads only files whose phi_i spans the whole circle.
         int reduction = int(std::rint(2 * Pi / (phi_i.back() - phi_i.front())));
         file.Expect(reduction == 1, fmt::format("its phi_i spans 1/{} of the circle; only whole "
-                                                "circles are supported, as in pbrt-v4", reduction));
+                                                "circles are supported, as in pbrt-v4",
+                                                reduction));
     }
-    auto grid = [&](const TensorField &f, auto params, bool normalize, const std::vector<float> &values) {
+    auto grid = [&](const TensorField &f, auto params, bool normalize,
+                    const std::vector<float> &values) {
         using Table = PiecewiseLinear2D<int(std::tuple_size_v<decltype(params)>)>;
         int x = int(f.shape[f.shape.size() - 1]), y = int(f.shape[f.shape.size() - 2]);
         try {
@@ -125,7 +131,8 @@ std::shared_ptr<const MeasuredBxDFData> MeasuredBxDFData::Read(const std::string
     data->sigma = grid(sigma, std::array<std::vector<float>, 0>{}, false, sigmaValues);
     data->vndf = grid(vndf, Axes2{phi_i, theta_i}, true, file.Floats("vndf", 4));
     data->luminance = grid(luminance, Axes2{phi_i, theta_i}, true, file.Floats("luminance", 4));
-    data->spectra = grid(spectra, Axes3{phi_i, theta_i, data->wavelengths}, false, file.Floats("spectra", 5));
+    data->spectra =
+        grid(spectra, Axes3{phi_i, theta_i, data->wavelengths}, false, file.Floats("spectra", 5));
     return data;
 }
 

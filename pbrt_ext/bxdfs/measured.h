@@ -41,9 +41,9 @@ namespace pbrt {
 struct MeasuredBxDFData {
     std::string filename;
     std::vector<float> wavelengths;
-    PiecewiseLinear2D<0> ndf, sigma;           // raw values over u_wm and u_wo
-    PiecewiseLinear2D<2> vndf, luminance;      // densities; parameters phi_i, theta_i
-    PiecewiseLinear2D<3> spectra;              // raw values; parameters phi_i, theta_i, lambda
+    PiecewiseLinear2D<0> ndf, sigma;       // raw values over u_wm and u_wo
+    PiecewiseLinear2D<2> vndf, luminance;  // densities; parameters phi_i, theta_i
+    PiecewiseLinear2D<3> spectra;          // raw values; parameters phi_i, theta_i, lambda
     bool isotropic = true;
 
     // Reads an RGL .bsdf file (tensorfile.h), checking its fields' names, types, shapes and
@@ -72,9 +72,11 @@ class MeasuredBxDF {
         Float sigma = brdf->sigma.Evaluate(a.u_wo, {});
         if (!(sigma > 0)) return SampledSpectrum(0.f);
         Point2f u = brdf->vndf.Invert(a.u_wm, {a.phi_o, a.theta_o}).p;
-        SampledSpectrum value = Reflectance(u, a) * (brdf->ndf.Evaluate(a.u_wm, {}) / (4 * sigma * CosTheta(wi)));
+        SampledSpectrum value =
+            Reflectance(u, a) * (brdf->ndf.Evaluate(a.u_wm, {}) / (4 * sigma * CosTheta(wi)));
         for (int i = 0; i < NSpectrumSamples; ++i)
-            if (!std::isfinite(value[i])) value[i] = 0;  // a file's values that overflow (see above)
+            if (!std::isfinite(value[i]))
+                value[i] = 0;  // a file's values that overflow (see above)
         return value;
     }
 
@@ -111,14 +113,16 @@ class MeasuredBxDF {
         PLSample inverse = brdf->vndf.Invert(a.u_wm, {a.phi_o, a.theta_o});
         Float lumPDF = brdf->luminance.Evaluate(inverse.p, {a.phi_o, a.theta_o});
         Float sinTheta_m = std::sqrt(Sqr(wm.x) + Sqr(wm.y));
-        Float jacobian = 4 * Dot(wo, wm) * std::max<Float>(2 * Sqr(Pi) * a.u_wm[0] * sinTheta_m, 1e-6f);
+        Float jacobian =
+            4 * Dot(wo, wm) * std::max<Float>(2 * Sqr(Pi) * a.u_wm[0] * sinTheta_m, 1e-6f);
         Float pdf = inverse.pdf * lumPDF / jacobian;
         return std::isfinite(pdf) ? pdf : 0;
     }
 
     void Regularize() {}
 
-    SampledSpectrum rho(Vector3f wo, pstd::span<const Float> uc, pstd::span<const Point2f> u2) const {
+    SampledSpectrum rho(Vector3f wo, pstd::span<const Float> uc,
+                        pstd::span<const Point2f> u2) const {
         return EstimateRho(*this, wo, uc, u2);
     }
     SampledSpectrum rho(pstd::span<const Point2f> u1, pstd::span<const Float> uc,

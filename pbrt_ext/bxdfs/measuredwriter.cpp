@@ -66,7 +66,8 @@ template <typename F>
 std::vector<float> AngleGrid(int n, F f) {
     std::vector<float> v;
     for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) v.push_back(float(f(DirectionAt(Float(x) / Float(n - 1), Float(y) / Float(n - 1)))));
+        for (int x = 0; x < n; ++x)
+            v.push_back(float(f(DirectionAt(Float(x) / Float(n - 1), Float(y) / Float(n - 1)))));
     return v;
 }
 
@@ -89,15 +90,17 @@ void WriteConductorBSDF(const std::string &path, const ConductorTableSpec &spec)
     std::string description =
         fmt::format("pbrt_ext WriteConductorBSDF: Trowbridge-Reitz alpha {} conductor", spec.alpha);
     TensorFields fields;
-    fields["description"] = TensorField::FromBytes({description.size()}, {description.begin(), description.end()});
+    fields["description"] =
+        TensorField::FromBytes({description.size()}, {description.begin(), description.end()});
     fields["jacobian"] = TensorField::FromBytes({1}, {1});
     fields["phi_i"] = TensorField::FromFloats({1}, {0.f});
     fields["theta_i"] = TensorField::FromFloats({nTheta}, theta_i);
     fields["wavelengths"] = TensorField::FromFloats({nLambda}, spec.wavelengths);
-    fields["ndf"] = TensorField::FromFloats({n, n}, AngleGrid(spec.resolution, [&](Vector3f wm) { return distrib.D(wm); }));
+    fields["ndf"] = TensorField::FromFloats(
+        {n, n}, AngleGrid(spec.resolution, [&](Vector3f wm) { return distrib.D(wm); }));
     fields["sigma"] = TensorField::FromFloats({n, n}, AngleGrid(spec.resolution, [&](Vector3f wo) {
-        return CosTheta(wo) / distrib.G1(wo);
-    }));
+                                                  return CosTheta(wo) / distrib.G1(wo);
+                                              }));
     fields["vndf"] = TensorField::FromFloats({1, nTheta, n, n}, vndf);
     fields["luminance"] = TensorField::FromFloats({1, nTheta, n, n}, luminance);
     fields["spectra"] = TensorField::FromFloats({1, nTheta, nLambda, n, n}, spectra);

@@ -25,11 +25,11 @@
 namespace pbrt {
 
 struct ConductorTableSpec {
-    Float alpha = 0.3f;               // Trowbridge-Reitz alpha (isotropic)
+    Float alpha = 0.3f;  // Trowbridge-Reitz alpha (isotropic)
     Spectrum eta = Spectrum(1.f), k = Spectrum(1.f);
-    std::vector<float> wavelengths;   // nm, increasing
-    int thetaCount = 16;              // theta_i values, uniform from 0 to 89 degrees
-    int resolution = 32;              // nodes per side of each grid
+    std::vector<float> wavelengths;  // nm, increasing
+    int thetaCount = 16;             // theta_i values, uniform from 0 to 89 degrees
+    int resolution = 32;             // nodes per side of each grid
 };
 
 // Throws std::runtime_error if the file cannot be written.

@@ -32,8 +32,9 @@ class NormalizedFresnelBxDF {
         return SampledSpectrum(mode == TransportMode::Radiance ? value * Sqr(eta) : value);
     }
 
-    pstd::optional<BSDFSample> Sample_f(Vector3f wo, Float /*uc*/, Point2f u, TransportMode mode,
-                                        BxDFReflTransFlags sampleFlags = BxDFReflTransFlags::All) const {
+    pstd::optional<BSDFSample> Sample_f(
+        Vector3f wo, Float /*uc*/, Point2f u, TransportMode mode,
+        BxDFReflTransFlags sampleFlags = BxDFReflTransFlags::All) const {
         if (!(sampleFlags & BxDFReflTransFlags::Reflection) || wo.z == 0) return {};
         Vector3f wi = SampleCosineHemisphere(u);
         if (wo.z < 0) wi.z *= -1;
@@ -48,7 +49,8 @@ class NormalizedFresnelBxDF {
     }
 
     void Regularize() {}
-    SampledSpectrum rho(Vector3f wo, pstd::span<const Float> uc, pstd::span<const Point2f> u2) const {
+    SampledSpectrum rho(Vector3f wo, pstd::span<const Float> uc,
+                        pstd::span<const Point2f> u2) const {
         return EstimateRho(*this, wo, uc, u2);
     }
     SampledSpectrum rho(pstd::span<const Point2f> u1, pstd::span<const Float> uc,
@@ -56,7 +58,9 @@ class NormalizedFresnelBxDF {
         return EstimateRho(*this, u1, uc, u2);
     }
     static constexpr const char *Name() { return "NormalizedFresnelBxDF"; }
-    std::string ToString() const { return "[ NormalizedFresnelBxDF eta: " + std::to_string(eta) + " ]"; }
+    std::string ToString() const {
+        return "[ NormalizedFresnelBxDF eta: " + std::to_string(eta) + " ]";
+    }
 
   private:
     Float eta = 1, c = 1;

@@ -22,11 +22,14 @@ int main(int argc, char **argv) {
     std::string metal = "Au", out;
     float lambdaStep = 10;
     app.add_option("--alpha", spec.alpha, "Trowbridge-Reitz alpha")->check(CLI::Range(0.01, 1.0));
-    app.add_option("--metal", metal, "pbrt-v4's metal-<NAME>-eta and -k spectra (Ag, Al, Au, Cu, "
-                                     "CuZn, MgO, TiO2)");
-    app.add_option("--resolution", spec.resolution, "nodes per side of each table")->check(CLI::Range(2, 256));
+    app.add_option("--metal", metal,
+                   "pbrt-v4's metal-<NAME>-eta and -k spectra (Ag, Al, Au, Cu, "
+                   "CuZn, MgO, TiO2)");
+    app.add_option("--resolution", spec.resolution, "nodes per side of each table")
+        ->check(CLI::Range(2, 256));
     app.add_option("--thetas", spec.thetaCount, "theta_i values")->check(CLI::Range(2, 256));
-    app.add_option("--lambda-step", lambdaStep, "nm between wavelengths, 360-830 nm")->check(CLI::Range(1.0, 470.0));
+    app.add_option("--lambda-step", lambdaStep, "nm between wavelengths, 360-830 nm")
+        ->check(CLI::Range(1.0, 470.0));
     app.add_option("out", out, "the .bsdf file to write")->required();
     CLI11_PARSE(app, argc, argv);
 
@@ -39,7 +42,8 @@ int main(int argc, char **argv) {
     }
     spec.eta = *eta;
     spec.k = *k;
-    for (float lambda = 360; lambda <= 830 + 1e-3f; lambda += lambdaStep) spec.wavelengths.push_back(lambda);
+    for (float lambda = 360; lambda <= 830 + 1e-3f; lambda += lambdaStep)
+        spec.wavelengths.push_back(lambda);
     try {
         WriteConductorBSDF(out, spec);
     } catch (const std::exception &e) {

@@ -139,15 +139,16 @@ inline Float SampleCatmullRom2D(std::span<const Float> nodes1, std::span<const F
     int i = detail::FindInterval(n, [&](int k) { return interpolate(cdf, k) <= u; });
     Float x0 = nodes2[size_t(i)], x1 = nodes2[size_t(i) + 1], width = x1 - x0;
     Float f0 = interpolate(values, i), f1 = interpolate(values, i + 1);
-    const std::pair<Float, Float> slopes =
-        catmullrom::EndSlopes(nodes2, [&](int k) { return interpolate(values, k); }, i);
+    const std::pair<Float, Float> slopes = catmullrom::EndSlopes(
+        nodes2, [&](int k) { return interpolate(values, k); }, i);
     const Float d0 = slopes.first, d1 = slopes.second;
     u = (u - interpolate(cdf, i)) / width;
     // The segment's integral from 0 to t and its derivative, the spline itself.
     Float t = catmullrom::NewtonBisection([&](Float s) {
         Float F = EvaluatePolynomial(s, 0, f0, 0.5f * d0, (1.f / 3.f) * (-2 * d0 - d1) + f1 - f0,
                                      0.25f * (d0 + d1) + 0.5f * (f0 - f1));
-        Float dF = EvaluatePolynomial(s, f0, d0, -2 * d0 - d1 + 3 * (f1 - f0), d0 + d1 + 2 * (f0 - f1));
+        Float dF =
+            EvaluatePolynomial(s, f0, d0, -2 * d0 - d1 + 3 * (f1 - f0), d0 + d1 + 2 * (f0 - f1));
         return std::pair{F - u, dF};
     });
     return x0 + width * t;

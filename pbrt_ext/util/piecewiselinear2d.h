@@ -85,7 +85,9 @@ class PiecewiseLinear2D {
 
         // The row strip, then the fraction t across it, where the row sums are linear.
         const size_t marginal = w.slice * size_t(ySize);
-        int row = detail::FindInterval(ySize, [&](int i) { return Lookup(marginalCDF, marginal + size_t(i), size_t(ySize), w) <= u[1]; });
+        int row = detail::FindInterval(ySize, [&](int i) {
+            return Lookup(marginalCDF, marginal + size_t(i), size_t(ySize), w) <= u[1];
+        });
         Float uy = (u[1] - Lookup(marginalCDF, marginal + size_t(row), size_t(ySize), w)) / dy;
         const size_t rowStart = w.slice * n + size_t(row) * size_t(xSize);
         Float r0 = Lookup(conditionalCDF, rowStart + size_t(xSize) - 1, n, w);
@@ -102,7 +104,8 @@ class PiecewiseLinear2D {
         ux = (ux - conditional(col)) / dx;
         const size_t cell = rowStart + size_t(col);
         Float c0 = Lerp(t, Lookup(values, cell, n, w), Lookup(values, cell + size_t(xSize), n, w));
-        Float c1 = Lerp(t, Lookup(values, cell + 1, n, w), Lookup(values, cell + size_t(xSize) + 1, n, w));
+        Float c1 =
+            Lerp(t, Lookup(values, cell + 1, n, w), Lookup(values, cell + size_t(xSize) + 1, n, w));
         Float s = SolveLinearDensity(c0, c1, ux);
         return {Point2f((Float(col) + s) * dx, (Float(row) + t) * dy), Lerp(s, c0, c1)};
     }
@@ -160,8 +163,10 @@ class PiecewiseLinear2D {
                 w.w[size_t(2 * d)] = 1;
                 continue;
             }
-            int i = detail::FindInterval(int(v.size()), [&](int k) { return v[size_t(k)] <= param[size_t(d)]; });
-            Float f = Clamp((param[size_t(d)] - v[size_t(i)]) / (v[size_t(i) + 1] - v[size_t(i)]), 0, 1);
+            int i = detail::FindInterval(int(v.size()),
+                                         [&](int k) { return v[size_t(k)] <= param[size_t(d)]; });
+            Float f =
+                Clamp((param[size_t(d)] - v[size_t(i)]) / (v[size_t(i) + 1] - v[size_t(i)]), 0, 1);
             if (!(f == f)) f = 0;  // a NaN parameter takes the first value
             w.w[size_t(2 * d)] = 1 - f;
             w.w[size_t(2 * d) + 1] = f;
@@ -172,7 +177,8 @@ class PiecewiseLinear2D {
 
     // table[index] interpolated across the parameters: the 2^Dimension neighbouring slices
     // (sliceSize apart per unit of stride), weighted.
-    Float Lookup(const std::vector<float> &table, size_t index, size_t sliceSize, const Weights &w) const {
+    Float Lookup(const std::vector<float> &table, size_t index, size_t sliceSize,
+                 const Weights &w) const {
         Float sum = 0;
         for (int corner = 0; corner < (1 << Dimension); ++corner) {
             Float weight = 1;
@@ -246,14 +252,17 @@ class PiecewiseLinear2D {
                 conditional[size_t(y * xSize + x + 1)] = float(sum);
             }
             if (y > 0)
-                below += (double(conditional[size_t(y * xSize - 1)]) + conditional[size_t((y + 1) * xSize - 1)]) / 2 * dy;
+                below += (double(conditional[size_t(y * xSize - 1)]) +
+                          conditional[size_t((y + 1) * xSize - 1)]) /
+                         2 * dy;
             marginal[y] = float(below);
         }
     }
 
     int xSize = 0, ySize = 0;
     std::array<std::vector<float>, Dimension> paramValues;
-    std::array<size_t, Dimension + 1> paramStride{};  // slices per step of each parameter (0: one value)
+    std::array<size_t, Dimension + 1>
+        paramStride{};  // slices per step of each parameter (0: one value)
     std::vector<float> values, marginalCDF, conditionalCDF;
 };
 

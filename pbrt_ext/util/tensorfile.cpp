@@ -97,12 +97,14 @@ std::span<const uint8_t> TensorField::UInt8s() const {
 }
 
 TensorField TensorField::FromFloats(std::vector<uint64_t> shape, const std::vector<float> &values) {
-    TensorField f{Type::Float32, std::move(shape), std::vector<uint8_t>(values.size() * sizeof(float))};
+    TensorField f{Type::Float32, std::move(shape),
+                  std::vector<uint8_t>(values.size() * sizeof(float))};
     std::memcpy(f.bytes.data(), values.data(), f.bytes.size());
     return f;
 }
 
-TensorField TensorField::FromBytes(std::vector<uint64_t> shape, const std::vector<uint8_t> &values) {
+TensorField TensorField::FromBytes(std::vector<uint64_t> shape,
+                                   const std::vector<uint8_t> &values) {
     return TensorField{Type::UInt8, std::move(shape), values};
 }
 
@@ -120,7 +122,8 @@ TensorFields ReadTensorFile(const std::string &path) {
 
     TensorFields fields;
     for (uint32_t i = 0; i < nFields; ++i) {
-        std::string name = in.ReadString(in.Read<uint16_t>("a field's name length"), "a field's name");
+        std::string name =
+            in.ReadString(in.Read<uint16_t>("a field's name length"), "a field's name");
         uint16_t rank = in.Read<uint16_t>("a field's rank");
         uint8_t type = in.Read<uint8_t>("a field's type");
         uint64_t offset = in.Read<uint64_t>("a field's offset");

@@ -25,7 +25,17 @@ namespace pbrt {
 struct TensorField {
     // The element types, numbered as the format numbers them.
     enum class Type : uint8_t {
-        UInt8 = 1, Int8, UInt16, Int16, UInt32, Int32, UInt64, Int64, Float16, Float32, Float64
+        UInt8 = 1,
+        Int8,
+        UInt16,
+        Int16,
+        UInt32,
+        Int32,
+        UInt64,
+        Int64,
+        Float16,
+        Float32,
+        Float64
     };
     Type type = Type::Float32;
     std::vector<uint64_t> shape;
