@@ -233,8 +233,9 @@ TEST(TabulatedBSSRDF, ProbeHitsFollowPDF_Sp) {
         if (phi < 0) phi += 2 * Pi;
         observed[size_t(cellOf(r, phi))] += 1;
     }
-    // Midpoint quadrature in r^2-like rings (the cells' own spacing), 64 x 16 points per cell.
-    constexpr int qr = 64, qphi = 16;
+    // Midpoint quadrature over each ring (64 sub-rings in the cells' own spacing); the density is
+    // symmetric about the normal, so each sector takes its share of the ring.
+    constexpr int qr = 64;
     for (int ring = 0; ring < rings; ++ring)
         for (int j = 0; j < qr; ++j) {
             Float s0 = (ring + Float(j) / qr) / rings, s1 = (ring + Float(j + 1) / qr) / rings;
