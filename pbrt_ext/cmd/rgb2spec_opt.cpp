@@ -3,7 +3,11 @@
 // and writes it as a C++ source and the binary file that source embeds. Run by the build
 // (pbrt_ext/CMakeLists.txt) once per space; the fit itself is in rgb2spec_opt.h.
 //
-//   rgb2spec_opt [--threads N] <space> <output.cpp> <output.bin>
+//   rgb2spec_opt [--threads N] [--cache DIR KEY] <space> <output.cpp> <output.bin>
+//
+// With --cache, a table already fitted by the same generator (KEY: the build's hash of the
+// generator's sources) is copied from DIR instead of fitted again, and a fitted one is stored
+// there: the presets of one checkout (release, asan) fit each table once between them.
 //
 // The 3 x 64 x 64 columns of the table are independent (each is solved from its middle layer
 // outwards) and are shared out to the threads one column at a time; the result does not depend
@@ -18,6 +22,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -28,12 +33,13 @@ using namespace pbrt::rgb2spec;
 namespace embedded = pbrt::embedded;
 
 constexpr const char *kUsage =
-    "usage: rgb2spec_opt [--threads N] <space> <output.cpp> <output.bin>\n"
+    "usage: rgb2spec_opt [--threads N] [--cache DIR KEY] <space> <output.cpp> <output.bin>\n"
     "  Optimizes the RGB-to-spectrum coefficient table (Jakob and Hanika 2019) of <space> (srgb,\n"
     "  dci-p3, rec2020 or aces2065-1) and writes it as <output.bin> (float[3][64][64][64][3],\n"
     "  native byte order) and <output.cpp>, which defines the layer brightnesses and embeds\n"
     "  <output.bin> for RGBToSpectrumTable.\n"
-    "  --threads N  worker threads (default: the hardware's, %u here)\n";
+    "  --threads N  worker threads (default: the hardware's, %u here)\n"
+    "  --cache DIR KEY  take the table from DIR/<space>-KEY.bin if there, else store it there\n";
 
 std::string GeneratedSource(const Gamut &gamut, const std::filesystem::path &bin,
                             const std::vector<float> &zNodes, size_t bytes) {
@@ -59,9 +65,45 @@ std::string GeneratedSource(const Gamut &gamut, const std::filesystem::path &bin
 
 }  // namespace
 
+struct FitReport {
+    double worst = 0;     // the largest residual (CIELAB delta E)
+    int unconverged = 0;  // columns with a cell off by more than 1e-3 delta E
+};
+
+// Fits every column of the table; the columns are shared out to the threads one at a time.
+FitReport FitTable(const Gamut &gamut, unsigned nThreads, std::vector<float> *table) {
+    const SigmoidFit &fit = SigmoidFit::ForGamut(gamut);
+    constexpr int kColumns = 3 * kResolution * kResolution;
+    std::atomic<int> nextColumn{0}, unconverged{0};
+    std::vector<double> worst(nThreads, 0);
+    std::vector<std::thread> threads;
+    for (unsigned t = 0; t < nThreads; ++t)
+        threads.emplace_back([&, t] {
+            for (int c; (c = nextColumn++) < kColumns;) {
+                int maxc = c / (kResolution * kResolution), yi = c / kResolution % kResolution,
+                    xi = c % kResolution;
+                double residual = fit.SolveColumn(maxc, yi, xi, table->data());
+                worst[t] = std::max(worst[t], residual);
+                if (residual > 1e-3) ++unconverged;
+            }
+        });
+    for (std::thread &t : threads) t.join();
+    return {*std::max_element(worst.begin(), worst.end()), unconverged.load()};
+}
+
+// The table from the cache file, if it is there whole.
+bool ReadCachedTable(const std::filesystem::path &path, std::vector<float> *table) {
+    std::ifstream in(path, std::ios::binary);
+    return in && in.read(reinterpret_cast<char *>(table->data()),
+                         std::streamsize(table->size() * sizeof(float))) &&
+           in.peek() == std::char_traits<char>::eof();
+}
+
 int main(int argc, char **argv) {
     unsigned nThreads = std::max(1u, std::thread::hardware_concurrency());
     std::vector<std::string> paths;
+    std::filesystem::path cacheDir;
+    std::string cacheKey;
     for (int i = 1; i < argc; ++i) {
         std::string arg = argv[i];
         if (arg == "--threads" && i + 1 < argc) {
@@ -73,6 +115,9 @@ int main(int argc, char **argv) {
                 return 2;
             }
             nThreads = unsigned(n);
+        } else if (arg == "--cache" && i + 2 < argc) {
+            cacheDir = argv[++i];
+            cacheKey = argv[++i];
         } else if (arg == "-h" || arg == "--help") {
             std::printf(kUsage, nThreads);
             return 0;
@@ -96,24 +141,18 @@ int main(int argc, char **argv) {
     const std::filesystem::path cppPath = paths[1], binPath = paths[2];
 
     auto start = std::chrono::steady_clock::now();
-    const SigmoidFit &fit = SigmoidFit::ForGamut(*gamut);
     std::vector<float> table(kTableFloats);
-    constexpr int kColumns = 3 * kResolution * kResolution;
-    std::atomic<int> nextColumn{0};
-    std::vector<double> worst(nThreads, 0);
-    std::atomic<int> unconverged{0};  // columns with a cell off by more than 1e-3 delta E
-    std::vector<std::thread> threads;
-    for (unsigned t = 0; t < nThreads; ++t)
-        threads.emplace_back([&, t] {
-            for (int c; (c = nextColumn++) < kColumns;) {
-                int maxc = c / (kResolution * kResolution), yi = c / kResolution % kResolution,
-                    xi = c % kResolution;
-                double residual = fit.SolveColumn(maxc, yi, xi, table.data());
-                worst[t] = std::max(worst[t], residual);
-                if (residual > 1e-3) ++unconverged;
-            }
-        });
-    for (std::thread &t : threads) t.join();
+    const std::filesystem::path cached =
+        cacheDir.empty() ? std::filesystem::path()
+                         : cacheDir / (std::string(gamut->name) + "-" + cacheKey + ".bin");
+    const bool hit = !cached.empty() && ReadCachedTable(cached, &table);
+    FitReport report;
+    if (!hit) {
+        report = FitTable(*gamut, nThreads, &table);
+        // A cache that cannot be written only costs the next preset the fit.
+        if (!cached.empty())
+            embedded::WriteFile(cached, table.data(), table.size() * sizeof(float));
+    }
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     std::vector<float> zNodes(kResolution);
@@ -127,9 +166,13 @@ int main(int argc, char **argv) {
                      cppPath.c_str());
         return 1;
     }
-    std::printf("rgb2spec_opt: %s: %d cells in %.1f s on %u thread(s); largest residual %.3g "
-                "(CIELAB delta E); %d of %d columns above 1e-3\n",
-                gamut->name, 3 * kResolution * kResolution * kResolution, seconds, nThreads,
-                *std::max_element(worst.begin(), worst.end()), unconverged.load(), kColumns);
+    if (hit)
+        std::printf("rgb2spec_opt: %s: the table fitted before, from %s\n", gamut->name,
+                    cached.c_str());
+    else
+        std::printf("rgb2spec_opt: %s: %d cells in %.1f s on %u thread(s); largest residual %.3g "
+                    "(CIELAB delta E); %d of %d columns above 1e-3\n",
+                    gamut->name, 3 * kResolution * kResolution * kResolution, seconds, nThreads,
+                    report.worst, report.unconverged, 3 * kResolution * kResolution);
     return 0;
 }
