@@ -36,7 +36,7 @@ function(pbrt_ext_add_cuda_compile_check name source)
 
   cmake_path(ABSOLUTE_PATH source)
   set(log ${CMAKE_CURRENT_BINARY_DIR}/${name}.log)
-  set(object ${CMAKE_CURRENT_BINARY_DIR}/${name}.o)
+  set(object ${CMAKE_CURRENT_BINARY_DIR}/${name}.ptx)
   set(depfile ${CMAKE_CURRENT_BINARY_DIR}/${name}.d)
   set(runner ${CMAKE_CURRENT_FUNCTION_LIST_DIR}/RunNvcc.cmake)
   add_custom_command(
