@@ -16,7 +16,7 @@ using namespace pbrt;
 
 namespace {
 
-Float AngleBetween(Vector3f a, Vector3f b) {
+Float AngleOf(Vector3f a, Vector3f b) {
     return SafeACos(Dot(Normalize(a), Normalize(b)));
 }
 
@@ -39,12 +39,12 @@ TEST(EqualArea, SphereToSquareToSphere) {
         Vector3f w = SampleUniformSphere(Point2f(u0, rng.Uniform<Float>()));
         Point2f p = EqualAreaSphereToSquare(w);
         ASSERT_TRUE(p.x >= 0 && p.x <= 1 && p.y >= 0 && p.y <= 1);
-        EXPECT_LT(AngleBetween(EqualAreaSquareToSphere(p), w), 1e-3f);
+        EXPECT_LT(AngleOf(EqualAreaSquareToSphere(p), w), 1e-3f);
     }
     // Poles, equator and axes, where the folds meet.
     for (Vector3f w : {Vector3f(0, 0, 1), Vector3f(0, 0, -1), Vector3f(1, 0, 0),
                        Vector3f(0, -1, 0), Normalize(Vector3f(1, 1, 0))})
-        EXPECT_LT(AngleBetween(EqualAreaSquareToSphere(EqualAreaSphereToSquare(w)), w), 1e-5f);
+        EXPECT_LT(AngleOf(EqualAreaSquareToSphere(EqualAreaSphereToSquare(w)), w), 1e-5f);
 }
 
 // |dw/du x dw/dv| = 4 pi away from the creases (|u|+|v| = 1, the axes and the square's edges,
@@ -103,7 +103,7 @@ TEST(EqualArea, WrapContinuesAcrossEdges) {
         for (const Step &s : steps) {
             Point2i w = WrapEqualAreaSquare(s.outside, res);
             ASSERT_TRUE(w.x >= 0 && w.x < n && w.y >= 0 && w.y < n);
-            EXPECT_LT(AngleBetween(center(w), center(s.inside)), 2.5f * pixelAngle)
+            EXPECT_LT(AngleOf(center(w), center(s.inside)), 2.5f * pixelAngle)
                 << "outside (" << s.outside.x << ", " << s.outside.y << ") -> (" << w.x << ", "
                 << w.y << ")";
         }
