@@ -351,6 +351,7 @@ struct EmbreeAggregate::Impl {
     AnimatedTransform motionTimes;
     int openObject = -1;
     bool committed = false;
+    RayLog *rayLog = nullptr;
     // Stable addresses for Embree's user pointers.
     std::tuple<std::deque<Sphere>, std::deque<Cylinder>, std::deque<Disk>> quadrics;
     std::vector<std::shared_ptr<const TriangleMesh>> triangleMeshes;
@@ -658,6 +659,8 @@ void EmbreeAggregate::Commit() {
 
 pstd::optional<ShapeIntersection> EmbreeAggregate::Intersect(const Ray &ray, Float tMax) const {
     assert(impl->committed);
+    if (impl->rayLog)
+        impl->rayLog->Add(ray, tMax, false);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh;
@@ -694,11 +697,33 @@ pstd::optional<ShapeIntersection> EmbreeAggregate::Intersect(const Ray &ray, Flo
 
 bool EmbreeAggregate::IntersectP(const Ray &ray, Float tMax) const {
     assert(impl->committed);
+    if (impl->rayLog)
+        impl->rayLog->Add(ray, tMax, true);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay r = ToEmbree(ray, tMax, impl->EmbreeTime(ray.time));
     rtcOccluded1(impl->world.scene, &context, &r);
     return r.tfar < 0;
+}
+
+void EmbreeAggregate::SetRayLog(RayLog *log) { impl->rayLog = log; }
+
+bool EmbreeAggregate::Traverse(const LoggedRay &logged) const {
+    assert(impl->committed);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    const Float time = impl->EmbreeTime(logged.ray.time);
+    if (logged.shadow) {
+        RTCRay r = ToEmbree(logged.ray, logged.tMax, time);
+        rtcOccluded1(impl->world.scene, &context, &r);
+        return r.tfar < 0;
+    }
+    RTCRayHit rh;
+    rh.ray = ToEmbree(logged.ray, logged.tMax, time);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(impl->world.scene, &context, &rh);
+    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
 
 bool EmbreeAggregate::HasMotion() const { return impl->motionTimes.IsAnimated(); }

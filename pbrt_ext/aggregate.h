@@ -15,6 +15,7 @@
 #include "pbrt_ext/base/medium.h"
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/ray.h"
+#include "pbrt_ext/raylog.h"
 #include "pbrt_ext/curves.h"
 #include "pbrt_ext/shapes.h"
 #include "pbrt_ext/util/animatedtransform.h"
@@ -92,6 +93,14 @@ class EmbreeAggregate {
     // Whether anything lies along the ray with 0 < t < tMax.
     bool IntersectP(const Ray &ray, Float tMax = Infinity) const;
     Bounds3f WorldBound() const;
+
+    // For the traversal-limit benchmark. While a log is attached (null detaches), Intersect and
+    // IntersectP record each query in it; unattached, they pay one test of a pointer.
+    void SetRayLog(RayLog *log);
+    // Embree's traversal alone: rtcIntersect1 (or rtcOccluded1 for a shadow ray), with the
+    // geometry's own intersection and alpha callbacks but without building the interaction.
+    // Returns whether the ray hit something.
+    bool Traverse(const LoggedRay &ray) const;
 
   private:
     struct Impl;

@@ -237,5 +237,40 @@ TEST(EmbreeAggregate, ConcurrentQueriesAndMove) {
     EXPECT_EQ(serial, b);
 }
 
+// The ray log of the traversal-limit benchmark: every query is kept, as asked, while a log is
+// attached, none after; Traverse answers each kept ray as the query did; a full log counts the
+// queries it could not keep.
+TEST(EmbreeAggregate, RayLogKeepsEveryQueryAndTraverseAgrees) {
+    EmbreeAggregate agg = ClosedBox();
+    RayLog log(1000);
+    agg.SetRayLog(&log);
+    RNG rng(5);
+    std::vector<bool> answers;
+    for (int i = 0; i < 300; ++i) {
+        Float u0 = rng.Uniform<Float>();
+        Ray ray(Point3f(0, 0, 0.1f), SampleUniformSphere(Point2f(u0, rng.Uniform<Float>())));
+        Float tMax = 2 * rng.Uniform<Float>();
+        answers.push_back(i % 2 ? agg.IntersectP(ray, tMax) : bool(agg.Intersect(ray, tMax)));
+    }
+    agg.SetRayLog(nullptr);
+    agg.Intersect(Ray(Point3f(0, 0, 0), Vector3f(1, 0, 0)));
+    std::vector<LoggedRay> rays = log.Rays();
+    ASSERT_EQ(rays.size(), answers.size());
+    int hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        EXPECT_EQ(rays[i].shadow, i % 2 == 1);
+        EXPECT_EQ(agg.Traverse(rays[i]), answers[i]) << "ray " << i;
+        hits += answers[i];
+    }
+    EXPECT_GT(hits, 50);   // both answers occur: tMax cuts some rays short of the walls
+    EXPECT_LT(hits, 250);
+
+    RayLog small(10);
+    agg.SetRayLog(&small);
+    for (int i = 0; i < 25; ++i) agg.IntersectP(Ray(Point3f(0, 0, 0), Vector3f(0, 0, 1)), 1);
+    EXPECT_EQ(small.Rays().size(), 10u);
+    EXPECT_EQ(small.Queries(), 25u);
+}
+
 }  // namespace
 }  // namespace pbrt
