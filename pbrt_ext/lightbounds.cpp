@@ -18,11 +18,17 @@ Float SinSubClamped(Float sinA, Float cosA, Float sinB, Float cosB) {
 
 }  // namespace
 
-Float LightBounds::Importance(Point3f p, Normal3f n) const {
-    Point3f pc = Centroid();
+LightBounds::Constants::Constants(const LightBounds &lb)
+    : centroid(lb.Centroid()), halfDiagonal(Length(lb.bounds.Diagonal()) / 2),
+      sinTheta_o(SafeSqrt(1 - Sqr(lb.cosTheta_o))) {
+    lb.bounds.BoundingSphere(&sphereCenter, &sphereRadius);
+}
+
+Float LightBounds::Importance(Point3f p, Normal3f n, const Constants &k) const {
+    Point3f pc = k.centroid;
     // Clamped below by half the diagonal, so that points inside or near the bounds are not
     // given unbounded importance.
-    Float d2 = std::max(DistanceSquared(p, pc), Length(bounds.Diagonal()) / 2);
+    Float d2 = std::max(DistanceSquared(p, pc), k.halfDiagonal);
 
     // The angle between the cone's axis and the direction from the bounds to p, less the
     // normals' spread and the angle the bounds subtend from p: the smallest emission angle.
@@ -31,11 +37,12 @@ Float LightBounds::Importance(Point3f p, Normal3f n) const {
     if (twoSided)
         cosTheta_w = std::abs(cosTheta_w);
     Float sinTheta_w = SafeSqrt(1 - Sqr(cosTheta_w));
-    Float cosTheta_b = BoundSubtendedDirections(bounds, p).cosTheta;
+    // BoundSubtendedDirections(bounds, p).cosTheta, without the cone's axis.
+    Float dc2 = DistanceSquared(p, k.sphereCenter);
+    Float cosTheta_b = dc2 < Sqr(k.sphereRadius) ? -1 : SafeSqrt(1 - Sqr(k.sphereRadius) / dc2);
     Float sinTheta_b = SafeSqrt(1 - Sqr(cosTheta_b));
-    Float sinTheta_o = SafeSqrt(1 - Sqr(cosTheta_o));
-    Float cosTheta_x = CosSubClamped(sinTheta_w, cosTheta_w, sinTheta_o, cosTheta_o);
-    Float sinTheta_x = SinSubClamped(sinTheta_w, cosTheta_w, sinTheta_o, cosTheta_o);
+    Float cosTheta_x = CosSubClamped(sinTheta_w, cosTheta_w, k.sinTheta_o, cosTheta_o);
+    Float sinTheta_x = SinSubClamped(sinTheta_w, cosTheta_w, k.sinTheta_o, cosTheta_o);
     Float cosThetap = CosSubClamped(sinTheta_x, cosTheta_x, sinTheta_b, cosTheta_b);
     if (cosThetap <= cosTheta_e)
         return 0;

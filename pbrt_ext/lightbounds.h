@@ -28,11 +28,25 @@ struct LightBounds {
 
     Point3f Centroid() const { return (bounds.pMin + bounds.pMax) / 2; }
 
+    // The terms of Importance that depend on the bounds alone. The BVH light sampler keeps them
+    // in its nodes, since it asks two nodes' importance per level at every shading point, and
+    // these are three of its square roots.
+    struct Constants {
+        explicit Constants(const LightBounds &lb);
+        Point3f centroid;
+        Float halfDiagonal;     // the clamp of the squared distance
+        Point3f sphereCenter;   // the bounding sphere of BoundSubtendedDirections
+        Float sphereRadius;
+        Float sinTheta_o;
+    };
+
     // An estimate, conservative in direction, of what the lights could contribute at p (surface
     // normal n; zero n for a point in a medium): phi over the clamped squared distance, times the
     // cosine of the smallest angle between the emission cone and the directions to p, times the
     // smallest incident cosine at p. Zero only where no light of the bounds can reach p's side.
-    Float Importance(Point3f p, Normal3f n) const;
+    Float Importance(Point3f p, Normal3f n) const { return Importance(p, n, Constants(*this)); }
+    // The same, to the last bit, with the constants of these bounds worked out before.
+    Float Importance(Point3f p, Normal3f n, const Constants &k) const;
 
     std::string ToString() const;
 };

@@ -88,7 +88,7 @@ Float SplitCost(const LightBounds &b, const Bounds3f &parent, int dim) {
 
 }  // namespace
 
-BVHLightSampler::BVHLightSampler(pstd::span<const Light> lights) {
+BVHLightSampler::BVHLightSampler(pstd::span<const Light> lights) : lightToBitTrail(lights.size()) {
     std::vector<BoundedLight> bounded;
     for (size_t i = 0; i < lights.size(); ++i) {
         pstd::optional<LightBounds> b = lights[i].Bounds();
@@ -104,7 +104,7 @@ BVHLightSampler::BVHLightSampler(pstd::span<const Light> lights) {
 LightBounds BVHLightSampler::Build(std::vector<BoundedLight> &lights, size_t begin, size_t end,
                                    uint64_t bitTrail, int depth) {
     if (end - begin == 1) {
-        nodes.push_back({lights[begin].bounds, lights[begin].lightIndex, true});
+        nodes.emplace_back(lights[begin].bounds, lights[begin].lightIndex, true);
         lightToBitTrail[lights[begin].lightIndex] = bitTrail;
         return lights[begin].bounds;
     }
@@ -156,13 +156,13 @@ LightBounds BVHLightSampler::Build(std::vector<BoundedLight> &lights, size_t beg
 
     // Children in depth-first order: the first follows its parent, the second's index is stored.
     size_t nodeIndex = nodes.size();
-    nodes.push_back({LightBounds(), 0, false});
+    nodes.emplace_back(LightBounds(), 0, false);
     if (depth >= 64)
         throw std::runtime_error("BVHLightSampler: the light tree is deeper than 64 levels");
     LightBounds first = Build(lights, begin, mid, bitTrail, depth + 1);
     nodes[nodeIndex].childOrLightIndex = int(nodes.size());
     LightBounds second = Build(lights, mid, end, bitTrail | (uint64_t(1) << depth), depth + 1);
-    nodes[nodeIndex].bounds = Union(first, second);
+    nodes[nodeIndex] = Node(Union(first, second), nodes[nodeIndex].childOrLightIndex, false);
     return nodes[nodeIndex].bounds;
 }
 
@@ -170,7 +170,7 @@ BVHLightSampler::Children BVHLightSampler::ChildrenAt(int nodeIndex,
                                                       const LightSampleContext &ctx) const {
     Children c{{nodeIndex + 1, nodes[nodeIndex].childOrLightIndex}, {}};
     for (int i = 0; i < 2; ++i)
-        c.importance[i] = nodes[c.index[i]].bounds.Importance(ctx.p, ctx.n);
+        c.importance[i] = nodes[c.index[i]].Importance(ctx);
     return c;
 }
 
@@ -209,13 +209,14 @@ pstd::optional<SampledLight> BVHLightSampler::Sample(const LightSampleContext &c
 }
 
 Float BVHLightSampler::PMF(const LightSampleContext &ctx, int lightIndex) const {
-    auto trail = lightToBitTrail.find(lightIndex);
-    if (trail == lightToBitTrail.end()) {
+    bool inTree = lightIndex >= 0 && size_t(lightIndex) < lightToBitTrail.size() &&
+                  lightToBitTrail[lightIndex];
+    if (!inTree) {
         bool infinite = std::find(infiniteLights.begin(), infiniteLights.end(), lightIndex) !=
                         infiniteLights.end();
         return infinite ? PInfinite() / Float(infiniteLights.size()) : 0;
     }
-    uint64_t bitTrail = trail->second;
+    uint64_t bitTrail = *lightToBitTrail[lightIndex];
     int nodeIndex = 0;
     Float pmf = 1 - PInfinite();
     while (!nodes[nodeIndex].isLeaf) {

@@ -15,7 +15,6 @@
 #include <cstdint>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace pbrt {
@@ -85,7 +84,14 @@ class BVHLightSampler {
 
   private:
     struct Node {
+        Node(const LightBounds &bounds, int childOrLightIndex, bool isLeaf)
+            : bounds(bounds), constants(bounds), childOrLightIndex(childOrLightIndex), isLeaf(isLeaf) {}
+        Float Importance(const LightSampleContext &ctx) const {
+            return bounds.Importance(ctx.p, ctx.n, constants);
+        }
+
         LightBounds bounds;
+        LightBounds::Constants constants;
         // A leaf's light index; an interior node's second child (its first is the next node).
         int childOrLightIndex;
         bool isLeaf;
@@ -111,12 +117,13 @@ class BVHLightSampler {
     // Whether the tree is one leaf that cannot reach the receiving point (interior nodes exclude
     // such lights through their children's importance).
     bool LoneLeafUnreachable(int nodeIndex, const LightSampleContext &ctx) const {
-        return nodeIndex == 0 && nodes[0].bounds.Importance(ctx.p, ctx.n) == 0;
+        return nodeIndex == 0 && nodes[0].Importance(ctx) == 0;
     }
 
     std::vector<int> infiniteLights;
     std::vector<Node> nodes;
-    std::unordered_map<int, uint64_t> lightToBitTrail;  // lights in the tree
+    // By light index: the bit trail of a light in the tree, none for the others.
+    std::vector<std::optional<uint64_t>> lightToBitTrail;
 };
 
 }  // namespace pbrt

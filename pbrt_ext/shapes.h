@@ -117,7 +117,7 @@ class Triangle {
                                                           std::array<Float, 3> b, Vector3f wo);
 
   private:
-    pstd::optional<ShapeSample> SampleAt(std::array<Float, 3> b) const;
+    pstd::optional<ShapeSample> SampleAt(std::array<Float, 3> b, Float pdf) const;
 
     const TriangleMesh *mesh;
     int triIndex;

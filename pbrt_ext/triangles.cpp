@@ -209,11 +209,11 @@ bool Triangle::IntersectP(const Ray &ray, Float tMax) const {
 }
 
 pstd::optional<ShapeSample> Triangle::Sample(Point2f u) const {
-    return SampleAt(SampleUniformTriangle(u));
+    return SampleAt(SampleUniformTriangle(u), 1 / Area());
 }
 
-// The point at barycentrics b, with the density of area sampling.
-pstd::optional<ShapeSample> Triangle::SampleAt(std::array<Float, 3> b) const {
+// The point at barycentrics b, sampled with density pdf.
+pstd::optional<ShapeSample> Triangle::SampleAt(std::array<Float, 3> b, Float pdf) const {
     const int *v = &mesh->indices[3 * triIndex];
     auto [p0, p1, p2] = Vertices(mesh, triIndex);
     Normal3f n = Normal3f(Normalize(Cross(p1 - p0, p2 - p0)));
@@ -223,8 +223,7 @@ pstd::optional<ShapeSample> Triangle::SampleAt(std::array<Float, 3> b) const {
     else if (mesh->reverseOrientation ^ mesh->transformSwapsHandedness)
         n = -n;
     std::array<Point2f, 3> uv = TriangleUV(mesh, v);
-    return MakeSample(Interpolate(b, p0, p1, p2), n, Interpolate(b, uv[0], uv[1], uv[2]),
-                      1 / Area());
+    return MakeSample(Interpolate(b, p0, p1, p2), n, Interpolate(b, uv[0], uv[1], uv[2]), pdf);
 }
 
 pstd::optional<ShapeSample> Triangle::Sample(const ShapeSampleContext &ctx, Point2f u) const {
@@ -240,9 +239,7 @@ pstd::optional<ShapeSample> Triangle::Sample(const ShapeSampleContext &ctx, Poin
     pstd::optional<std::array<Float, 3>> b = spherical.Sample(u);
     if (!b || !(pdf > 0))
         return {};
-    pstd::optional<ShapeSample> ss = SampleAt(*b);
-    ss->pdf = pdf;
-    return ss;
+    return SampleAt(*b, pdf);
 }
 
 Float Triangle::PDF(const ShapeSampleContext &ctx, Vector3f wi) const {
