@@ -133,7 +133,12 @@ class ZSobolSampler {
 
     PBRT_CPU_GPU void StartPixelSample(Point2i p, int index, int dim = 0) {
         dimension = dim;
-        mortonIndex = (EncodeMorton2(uint32_t(p.x), uint32_t(p.y)) << log2SamplesPerPixel) | uint64_t(index);
+        uint64_t pixelCode = EncodeMorton2(uint32_t(p.x), uint32_t(p.y));
+        if (pixelCode != cachedPixelCode) {
+            cachedPixelCode = pixelCode;
+            cachedDimensions = 0;
+        }
+        mortonIndex = (pixelCode << log2SamplesPerPixel) | uint64_t(index);
     }
 
     PBRT_CPU_GPU Float Get1D() {
@@ -159,18 +164,24 @@ class ZSobolSampler {
         return kDigitPermutations.p[permutation][digit];
     }
 
-    PBRT_CPU_GPU uint64_t GetSampleIndex() const {
-        uint64_t sampleIndex = 0;
+    // The sample's index after the digits' permutations. The base-4 digits above the sample's
+    // own bits, and their permutations, depend only on the pixel and the dimension: they are
+    // kept for each dimension while the pixel's samples follow one another (the same bits).
+    PBRT_CPU_GPU uint64_t GetSampleIndex() {
+        const int firstPixelDigit = (log2SamplesPerPixel + 1) / 2;
+        uint64_t pixelDigits;
+        if (dimension < kCachedDimensions && ((cachedDimensions >> dimension) & 1))
+            pixelDigits = pixelDigitsCache[dimension];
+        else {
+            pixelDigits = PermutedDigits(firstPixelDigit, nBase4Digits);
+            if (dimension < kCachedDimensions) {
+                pixelDigitsCache[dimension] = pixelDigits;
+                cachedDimensions |= uint64_t(1) << dimension;
+            }
+        }
         // With an odd log2(spp) the last base-4 digit is half a digit: one base-2 digit.
         bool pow2Samples = log2SamplesPerPixel & 1;
-        int lastDigit = pow2Samples ? 1 : 0;
-        for (int i = nBase4Digits - 1; i >= lastDigit; --i) {
-            int digitShift = 2 * i - (pow2Samples ? 1 : 0);
-            int digit = int((mortonIndex >> digitShift) & 3);
-            uint64_t higherDigits = mortonIndex >> (digitShift + 2);
-            int p = int((MixBits(higherDigits ^ (0x55555555u * uint32_t(dimension))) >> 24) % 24);
-            sampleIndex |= uint64_t(PermuteDigit(p, digit)) << digitShift;
-        }
+        uint64_t sampleIndex = pixelDigits | PermutedDigits(pow2Samples ? 1 : 0, firstPixelDigit);
         if (pow2Samples) {
             int digit = int(mortonIndex & 1);
             sampleIndex |= digit ^ (MixBits((mortonIndex >> 1) ^ (0x55555555u * uint32_t(dimension))) & 1);
@@ -178,10 +189,31 @@ class ZSobolSampler {
         return sampleIndex;
     }
 
+    // Base-4 digits [first, last) of the index, each permuted by one of the 24 permutations,
+    // chosen by a hash of the digits above it and the dimension.
+    PBRT_CPU_GPU uint64_t PermutedDigits(int first, int last) const {
+        uint64_t digits = 0;
+        int shiftBias = log2SamplesPerPixel & 1;
+        for (int i = first; i < last; ++i) {
+            int digitShift = 2 * i - shiftBias;
+            int digit = int((mortonIndex >> digitShift) & 3);
+            uint64_t higherDigits = mortonIndex >> (digitShift + 2);
+            int p = int((MixBits(higherDigits ^ (0x55555555u * uint32_t(dimension))) >> 24) % 24);
+            digits |= uint64_t(PermuteDigit(p, digit)) << digitShift;
+        }
+        return digits;
+    }
+
     RandomizeStrategy randomize;
     int seed, log2SamplesPerPixel, nBase4Digits;
     uint64_t mortonIndex = 0;
     int dimension = 0;
+    // The pixel digits of GetSampleIndex for the dimensions below kCachedDimensions: bit d of
+    // cachedDimensions says whether pixelDigitsCache[d] holds dimension d's for the pixel whose
+    // Morton code is cachedPixelCode.
+    static constexpr int kCachedDimensions = 64;
+    uint64_t cachedPixelCode = 0, cachedDimensions = 0;
+    uint64_t pixelDigitsCache[kCachedDimensions] = {};
 };
 
 // The first of the next n dimensions of a sampler that has `count`, advancing past them; when

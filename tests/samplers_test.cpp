@@ -402,6 +402,35 @@ TEST(Samplers, ZSobolDecorrelatesNeighbouringPixels) {
     EXPECT_GE(firsts.size(), 14u);
 }
 
+// ZSobolSampler keeps the digits of a pixel's sample index that depend on the pixel alone while
+// that pixel's samples follow one another: its values must not depend on the order samples come
+// in. Every sample of every pixel taken pixel by pixel, then again interleaved across pixels (each
+// StartPixelSample a new pixel), must agree to the last bit, at odd and even log2(spp), past the
+// dimensions the sampler keeps.
+TEST(Samplers, ZSobolValuesDoNotDependOnTheOrderOfSamples) {
+    for (int spp : {1, 2, 8, 16, 32}) {
+        ZSobolSampler consecutive(spp, kResolution, RandomizeStrategy::FastOwen, 7);
+        ZSobolSampler interleaved = consecutive;
+        for (int y = 0; y < 3; ++y)
+            for (int x = 0; x < 3; ++x)
+                for (int i = 0; i < spp; ++i) {
+                    consecutive.StartPixelSample(Point2i(x, y), i);
+                    std::vector<Float> values;
+                    for (int d = 0; d < 50; ++d) {
+                        values.push_back(consecutive.Get1D());
+                        values.push_back(consecutive.Get2D().y);
+                    }
+                    interleaved.StartPixelSample(Point2i(x + 1, y), i);  // another pixel between
+                    interleaved.Get2D();
+                    interleaved.StartPixelSample(Point2i(x, y), i);
+                    for (int d = 0; d < 50; ++d) {
+                        ASSERT_EQ(interleaved.Get1D(), values[2 * d]) << spp << " spp, dim " << d;
+                        ASSERT_EQ(interleaved.Get2D().y, values[2 * d + 1]) << spp << " spp, dim " << d;
+                    }
+                }
+    }
+}
+
 TEST(Samplers, ZSobolRoundsSampleCountUpToPowerOfTwo) {
     Log().quiet = true;
     int before = Log().warnings;
