@@ -22,6 +22,7 @@
 #include "pbrt_ext/util/sampling.h"
 #include "pbrt_ext/util/transform.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -84,9 +85,9 @@ LightSet MakeLights(bool withInfinite) {
     return set;
 }
 
-std::string Str(Point3f p) {
-    return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
-}
+// fmt rather than "(" + std::to_string(...): GCC 12 misreads the inlined std::string operator+
+// (false -Wstringop-overflow and -Warray-bounds).
+std::string Str(Point3f p) { return fmt::format("({}, {}, {})", p.x, p.y, p.z); }
 
 // Receiving points: surfaces with random normals, and points in free space (n = 0).
 std::vector<LightSampleContext> Receivers(int count) {

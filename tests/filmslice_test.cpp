@@ -7,6 +7,7 @@
 #include "pbrt_ext/scene.h"
 #include "pbrt_ext/sceneloader.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -137,7 +138,7 @@ INSTANTIATE_TEST_SUITE_P(
 // The message of the merge's refusal; empty when it merged.
 std::string MergeError(const std::vector<FilmSlice> &slices) {
     std::vector<std::string> names;
-    for (size_t i = 0; i < slices.size(); ++i) names.push_back("s" + std::to_string(i) + ".exr");
+    for (size_t i = 0; i < slices.size(); ++i) names.push_back(fmt::format("s{}.exr", i));
     try {
         MergeFilmSlices(slices, names);
     } catch (const std::runtime_error &e) {

@@ -3,6 +3,7 @@
 // resolution, and the exact text of every syntax error (inline and in tests/data/bad/parse_*).
 #include "pbrt_ext/parser.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -125,7 +126,7 @@ class RecordingTarget : public ParserTarget {
     static std::string Nums(std::initializer_list<Float> v) {
         std::string s;
         for (Float x : v)
-            s += (s.empty() ? "" : " ") + std::to_string(int(x));
+            s += fmt::format("{}{}", s.empty() ? "" : " ", int(x));
         return s;
     }
     std::string Params(const ParsedParameterVector &p) {
@@ -133,7 +134,7 @@ class RecordingTarget : public ParserTarget {
         std::string s;
         for (const ParsedParameter &param : p)
             if (param.numbers.size() <= kMaxRecordedValues)
-                s += " " + param.ToString() + "@" + param.loc.ToString();
+                s += fmt::format(" {}@{}", param.ToString(), param.loc.ToString());
         return s;
     }
     // Large meshes are checked through lastParams, not their text.
