@@ -32,7 +32,26 @@ PerspectiveCamera::PerspectiveCamera(CameraMotion worldFromCamera, Point2i fullR
                                      Float focalDistance)
     : ProjectiveCamera(std::move(worldFromCamera), fullResolution, Perspective(fov, 1e-2f, 1000.f), screenWindow,
                        lensRadius, focalDistance),
-      fov(fov) {}
+      fov(fov) {
+    dxCamera = cameraFromRaster(Point3f(1, 0, 0)) - cameraFromRaster(Point3f(0, 0, 0));
+    dyCamera = cameraFromRaster(Point3f(0, 1, 0)) - cameraFromRaster(Point3f(0, 0, 0));
+}
+
+pstd::optional<CameraRayDifferential> PerspectiveCamera::GenerateRayDifferential(CameraSample sample) const {
+    Vector3f pCamera(cameraFromRaster(Point3f(sample.pFilm.x, sample.pFilm.y, 0)));
+    auto rayThrough = [&](Vector3f p) {
+        Ray pinhole(Point3f(0, 0, 0), Normalize(p));
+        return worldFromCamera.ToWorld(FocusThroughLens(pinhole, sample.pLens), sample.time);
+    };
+    RayDifferential rd(rayThrough(pCamera));
+    Ray rx = rayThrough(pCamera + dxCamera), ry = rayThrough(pCamera + dyCamera);
+    rd.rxOrigin = rx.o;
+    rd.rxDirection = rx.d;
+    rd.ryOrigin = ry.o;
+    rd.ryDirection = ry.d;
+    rd.hasDifferentials = true;
+    return CameraRayDifferential{rd};
+}
 
 std::string PerspectiveCamera::ToString() const {
     char buf[160];
@@ -59,6 +78,8 @@ std::string SphericalCamera::ToString() const {
 }
 
 pstd::optional<CameraRayDifferential> Camera::GenerateRayDifferential(CameraSample sample) const {
+    if (const PerspectiveCamera *perspective = std::get_if<PerspectiveCamera>(&camera))
+        return perspective->GenerateRayDifferential(sample);
     pstd::optional<CameraRay> cr = GenerateRay(sample);
     if (!cr)
         return {};

@@ -76,10 +76,15 @@ class PerspectiveCamera : public ProjectiveCamera {
         Ray r(Point3f(0, 0, 0), Normalize(Vector3f(pCamera)));
         return CameraRay{worldFromCamera.ToWorld(FocusThroughLens(r, sample.pLens), sample.time)};
     }
+    // pbrt-v4's PerspectiveCamera::GenerateRayDifferential: the neighbours are the rays through
+    // the film one pixel over in x and in y, through the same point of the lens, found from the
+    // camera-space size of a pixel rather than by generating more camera rays.
+    pstd::optional<CameraRayDifferential> GenerateRayDifferential(CameraSample sample) const;
     std::string ToString() const;
 
   private:
     Float fov;
+    Vector3f dxCamera, dyCamera;  // one pixel along raster x and y, in camera space
 };
 
 // Parallel rays along +z; the screen window is the visible extent in camera-space units.
@@ -144,8 +149,9 @@ class Camera {
     pstd::optional<CameraRay> GenerateRay(CameraSample sample) const {
         return std::visit([&](const auto &c) { return c.GenerateRay(sample); }, camera);
     }
-    // pbrt-v4's CameraBase::GenerateRayDifferential: the neighbours are the rays a twentieth of
-    // a pixel over (or back, where that has none), extrapolated to a whole pixel.
+    // The camera's own ray differentials where it has them (the perspective camera, as in
+    // pbrt-v4), else pbrt-v4's CameraBase::GenerateRayDifferential: the neighbours are the rays
+    // a twentieth of a pixel over (or back, where that has none), extrapolated to a whole pixel.
     pstd::optional<CameraRayDifferential> GenerateRayDifferential(CameraSample sample) const;
     Transform WorldFromCamera(Float time) const {
         return std::visit([&](const auto &c) { return c.Motion().At(time); }, camera);

@@ -161,9 +161,10 @@ TEST(SphericalCamera, FilmAreaMapsToSolidAngleAsTheMappingSays) {
     }
 }
 
-// A camera ray's differentials are its neighbours one pixel over (pbrt-v4's finite difference
-// over a twentieth of a pixel, extrapolated): for a pinhole they start where the ray does and
-// point where the rays through the next pixels do, for every camera.
+// A camera ray's differentials are its neighbours one pixel over (for the perspective camera
+// exactly, for the others pbrt-v4's finite difference over a twentieth of a pixel,
+// extrapolated): for a pinhole they start where the ray does and point where the rays through
+// the next pixels do, for every camera.
 TEST(RayDifferentials, CameraRaysCarryTheirNeighbours) {
     Point2i res(64, 48);
     Transform worldFromCamera = Translate(Vector3f(1, 2, 3)) * RotateY(30);
@@ -185,6 +186,29 @@ TEST(RayDifferentials, CameraRaysCarryTheirNeighbours) {
         Float turnX = Length(x.ray.d - crd->ray.d), turnY = Length(y.ray.d - crd->ray.d);
         EXPECT_LT(Length(crd->ray.rxDirection - x.ray.d), 0.05f * turnX + 1e-6f) << camera.Name();
         EXPECT_LT(Length(crd->ray.ryDirection - y.ray.d), 0.05f * turnY + 1e-6f) << camera.Name();
+    }
+}
+
+// The perspective camera's own differentials (pbrt-v4's PerspectiveCamera): exactly the rays
+// through the film one pixel over, through the same point of the lens, pinhole and thin lens.
+TEST(RayDifferentials, PerspectiveNeighboursAreTheNextPixelsRays) {
+    Point2i res(64, 48);
+    Transform worldFromCamera = Translate(Vector3f(1, 2, 3)) * RotateY(30);
+    for (Float lensRadius : {0.f, 0.2f}) {
+        Camera camera = PerspectiveCamera(worldFromCamera, res, DefaultScreenWindow(res), 50, lensRadius, 4);
+        CameraSample cs;
+        cs.pFilm = Point2f(20.3f, 30.6f);
+        cs.pLens = Point2f(0.3f, 0.8f);
+        RayDifferential ray = camera.GenerateRayDifferential(cs)->ray;
+        CameraSample sx = cs, sy = cs;
+        sx.pFilm.x += 1;
+        sy.pFilm.y += 1;
+        Ray x = camera.GenerateRay(sx)->ray, y = camera.GenerateRay(sy)->ray;
+        EXPECT_LT(Distance(ray.rxOrigin, x.o), 1e-5f) << lensRadius;
+        EXPECT_LT(Distance(ray.ryOrigin, y.o), 1e-5f) << lensRadius;
+        EXPECT_LT(Length(ray.rxDirection - x.d), 1e-5f) << lensRadius;
+        EXPECT_LT(Length(ray.ryDirection - y.d), 1e-5f) << lensRadius;
+        EXPECT_EQ(Ray(ray).d, camera.GenerateRay(cs)->ray.d);  // the ray itself is unchanged
     }
 }
 
