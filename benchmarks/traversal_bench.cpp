@@ -105,14 +105,15 @@ void MeasureLimit(benchmark::State &state, const MakeScene &make, int recordSpp,
             std::unique_ptr<Scene> scene = make(renderSpp, threads);
             RenderStatistics stats = Render(*scene, {threads, true});
             const double embree = EmbreeRaysPerSecond(*scene, rays, threads);
+            const std::vector<LoggedRay> shadowRays = OfKind(rays, true);
             state.counters["render_rays/s"] = stats.RaysPerSecond();
             state.counters["embree_rays/s"] = embree;
             state.counters["embree_closest/s"] = EmbreeRaysPerSecond(*scene, OfKind(rays, false), threads);
-            state.counters["embree_shadow/s"] = EmbreeRaysPerSecond(*scene, OfKind(rays, true), threads);
+            state.counters["embree_shadow/s"] = EmbreeRaysPerSecond(*scene, shadowRays, threads);
             state.counters["embree_camera/s"] = EmbreeRaysPerSecond(*scene, CameraRays(*scene), threads);
             // The share of the render's time that Embree's traversal of its rays would take.
             state.counters["traversal_share"] = stats.RaysPerSecond() / embree;
-            state.counters["shadow_fraction"] = double(OfKind(rays, true).size()) / double(rays.size());
+            state.counters["shadow_fraction"] = double(shadowRays.size()) / double(rays.size());
         } catch (const std::exception &e) {
             state.SkipWithError(e.what());
             break;

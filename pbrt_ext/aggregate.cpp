@@ -375,6 +375,25 @@ struct EmbreeAggregate::Impl {
     Impl(const Impl &) = delete;
     Impl &operator=(const Impl &) = delete;
 
+    // Embree's queries on the world, which Intersect, IntersectP and Traverse share.
+    RTCRayHit ClosestHit(const Ray &ray, Float tMax) const {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRayHit rh;
+        rh.ray = ToEmbree(ray, tMax, EmbreeTime(ray.time));
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(world.scene, &context, &rh);
+        return rh;
+    }
+    bool Occluded(const Ray &ray, Float tMax) const {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRay r = ToEmbree(ray, tMax, EmbreeTime(ray.time));
+        rtcOccluded1(world.scene, &context, &r);
+        return r.tfar < 0;
+    }
+
     // Robust traversal keeps triangle edges watertight, as pbrt-v4's intersection test is;
     // high build quality (spatial splits) pays back over the many rays of a render.
     RTCScene NewScene() const {
@@ -661,13 +680,7 @@ pstd::optional<ShapeIntersection> EmbreeAggregate::Intersect(const Ray &ray, Flo
     assert(impl->committed);
     if (impl->rayLog)
         impl->rayLog->Add(ray, tMax, false);
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh;
-    rh.ray = ToEmbree(ray, tMax, impl->EmbreeTime(ray.time));
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(impl->world.scene, &context, &rh);
+    RTCRayHit rh = impl->ClosestHit(ray, tMax);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
         return {};
 
@@ -699,31 +712,16 @@ bool EmbreeAggregate::IntersectP(const Ray &ray, Float tMax) const {
     assert(impl->committed);
     if (impl->rayLog)
         impl->rayLog->Add(ray, tMax, true);
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRay r = ToEmbree(ray, tMax, impl->EmbreeTime(ray.time));
-    rtcOccluded1(impl->world.scene, &context, &r);
-    return r.tfar < 0;
+    return impl->Occluded(ray, tMax);
 }
 
 void EmbreeAggregate::SetRayLog(RayLog *log) { impl->rayLog = log; }
 
 bool EmbreeAggregate::Traverse(const LoggedRay &logged) const {
     assert(impl->committed);
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    const Float time = impl->EmbreeTime(logged.ray.time);
-    if (logged.shadow) {
-        RTCRay r = ToEmbree(logged.ray, logged.tMax, time);
-        rtcOccluded1(impl->world.scene, &context, &r);
-        return r.tfar < 0;
-    }
-    RTCRayHit rh;
-    rh.ray = ToEmbree(logged.ray, logged.tMax, time);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(impl->world.scene, &context, &rh);
-    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    if (logged.shadow)
+        return impl->Occluded(logged.ray, logged.tMax);
+    return impl->ClosestHit(logged.ray, logged.tMax).hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
 
 bool EmbreeAggregate::HasMotion() const { return impl->motionTimes.IsAnimated(); }
