@@ -39,12 +39,8 @@ PerspectiveCamera::PerspectiveCamera(CameraMotion worldFromCamera, Point2i fullR
 
 pstd::optional<CameraRayDifferential> PerspectiveCamera::GenerateRayDifferential(CameraSample sample) const {
     Vector3f pCamera(cameraFromRaster(Point3f(sample.pFilm.x, sample.pFilm.y, 0)));
-    auto rayThrough = [&](Vector3f p) {
-        Ray pinhole(Point3f(0, 0, 0), Normalize(p));
-        return worldFromCamera.ToWorld(FocusThroughLens(pinhole, sample.pLens), sample.time);
-    };
-    RayDifferential rd(rayThrough(pCamera));
-    Ray rx = rayThrough(pCamera + dxCamera), ry = rayThrough(pCamera + dyCamera);
+    RayDifferential rd(RayThrough(pCamera, sample));
+    Ray rx = RayThrough(pCamera + dxCamera, sample), ry = RayThrough(pCamera + dyCamera, sample);
     rd.rxOrigin = rx.o;
     rd.rxDirection = rx.d;
     rd.ryOrigin = ry.o;
@@ -78,8 +74,15 @@ std::string SphericalCamera::ToString() const {
 }
 
 pstd::optional<CameraRayDifferential> Camera::GenerateRayDifferential(CameraSample sample) const {
-    if (const PerspectiveCamera *perspective = std::get_if<PerspectiveCamera>(&camera))
-        return perspective->GenerateRayDifferential(sample);
+    return std::visit([&](const auto &c) {
+        if constexpr (requires { c.GenerateRayDifferential(sample); })
+            return c.GenerateRayDifferential(sample);
+        else
+            return ApproximateRayDifferential(sample);
+    }, camera);
+}
+
+pstd::optional<CameraRayDifferential> Camera::ApproximateRayDifferential(CameraSample sample) const {
     pstd::optional<CameraRay> cr = GenerateRay(sample);
     if (!cr)
         return {};

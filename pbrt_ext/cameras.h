@@ -72,9 +72,7 @@ class PerspectiveCamera : public ProjectiveCamera {
 
     static constexpr const char *Name() { return "perspective"; }
     PBRT_CPU_GPU pstd::optional<CameraRay> GenerateRay(CameraSample sample) const {
-        Point3f pCamera = cameraFromRaster(Point3f(sample.pFilm.x, sample.pFilm.y, 0));
-        Ray r(Point3f(0, 0, 0), Normalize(Vector3f(pCamera)));
-        return CameraRay{worldFromCamera.ToWorld(FocusThroughLens(r, sample.pLens), sample.time)};
+        return CameraRay{RayThrough(Vector3f(cameraFromRaster(Point3f(sample.pFilm.x, sample.pFilm.y, 0))), sample)};
     }
     // pbrt-v4's PerspectiveCamera::GenerateRayDifferential: the neighbours are the rays through
     // the film one pixel over in x and in y, through the same point of the lens, found from the
@@ -83,6 +81,12 @@ class PerspectiveCamera : public ProjectiveCamera {
     std::string ToString() const;
 
   private:
+    // The world-space ray through camera-space film point pCamera and the sample's lens point.
+    PBRT_CPU_GPU Ray RayThrough(Vector3f pCamera, const CameraSample &sample) const {
+        Ray pinhole(Point3f(0, 0, 0), Normalize(pCamera));
+        return worldFromCamera.ToWorld(FocusThroughLens(pinhole, sample.pLens), sample.time);
+    }
+
     Float fov;
     Vector3f dxCamera, dyCamera;  // one pixel along raster x and y, in camera space
 };
@@ -153,6 +157,8 @@ class Camera {
     // pbrt-v4), else pbrt-v4's CameraBase::GenerateRayDifferential: the neighbours are the rays
     // a twentieth of a pixel over (or back, where that has none), extrapolated to a whole pixel.
     pstd::optional<CameraRayDifferential> GenerateRayDifferential(CameraSample sample) const;
+    // The finite-difference differentials, for cameras without their own.
+    pstd::optional<CameraRayDifferential> ApproximateRayDifferential(CameraSample sample) const;
     Transform WorldFromCamera(Float time) const {
         return std::visit([&](const auto &c) { return c.Motion().At(time); }, camera);
     }

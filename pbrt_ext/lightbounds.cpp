@@ -38,8 +38,7 @@ Float LightBounds::Importance(Point3f p, Normal3f n, const Constants &k) const {
         cosTheta_w = std::abs(cosTheta_w);
     Float sinTheta_w = SafeSqrt(1 - Sqr(cosTheta_w));
     // BoundSubtendedDirections(bounds, p).cosTheta, without the cone's axis.
-    Float dc2 = DistanceSquared(p, k.sphereCenter);
-    Float cosTheta_b = dc2 < Sqr(k.sphereRadius) ? -1 : SafeSqrt(1 - Sqr(k.sphereRadius) / dc2);
+    Float cosTheta_b = SubtendedCosTheta(k.sphereCenter, k.sphereRadius, p);
     Float sinTheta_b = SafeSqrt(1 - Sqr(cosTheta_b));
     Float cosTheta_x = CosSubClamped(sinTheta_w, cosTheta_w, k.sinTheta_o, cosTheta_o);
     Float sinTheta_x = SinSubClamped(sinTheta_w, cosTheta_w, k.sinTheta_o, cosTheta_o);

@@ -37,15 +37,22 @@ inline Float AngleBetween(Vector3f v1, Vector3f v2) {
 
 // The directions from p toward the box b: the cone around its bounding sphere, or every direction
 // when p is inside that sphere.
+// The cosine of the half-angle of the cone the sphere (center, radius) subtends from p; -1, the
+// whole sphere of directions, for a p inside it.
+inline Float SubtendedCosTheta(Point3f center, Float radius, Point3f p) {
+    Float d2 = DistanceSquared(p, center);
+    if (d2 < Sqr(radius))
+        return -1;
+    Float sin2ThetaMax = Sqr(radius) / d2;
+    return SafeSqrt(1 - sin2ThetaMax);
+}
+
 inline DirectionCone BoundSubtendedDirections(const Bounds3f &b, Point3f p) {
     Point3f center;
     Float radius;
     b.BoundingSphere(&center, &radius);
-    Float d2 = DistanceSquared(p, center);
-    if (d2 < Sqr(radius))
-        return DirectionCone::EntireSphere();
-    Float sin2ThetaMax = Sqr(radius) / d2;
-    return DirectionCone(center - p, SafeSqrt(1 - sin2ThetaMax));
+    Float cosTheta = SubtendedCosTheta(center, radius, p);
+    return cosTheta == -1 ? DirectionCone::EntireSphere() : DirectionCone(center - p, cosTheta);
 }
 
 // A cone holding both: a's axis turned toward b's until the spread covers both.
