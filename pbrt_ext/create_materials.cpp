@@ -54,8 +54,10 @@ Spectrum GetEta(const ParameterDictionary &p, const std::string &name, Float def
     return GetSpectrum(p, name, Spectrum(def), SpectrumType::Unbounded, folder);
 }
 
-LayerParameters GetLayer(const ParameterDictionary &p, TextureResolver &textures) {
+LayerParameters GetLayer(const ParameterDictionary &p, TextureResolver &textures,
+                         const RenderOverrides &overrides) {
     LayerParameters layer;
+    layer.exitMIS = overrides.layeredExitMIS;
     layer.thickness = textures.Float(p, "thickness", 0.01f);
     layer.albedo = textures.GetSpectrumTexture(p, "albedo", Spectrum(0.f), SpectrumType::Albedo);
     layer.g = textures.Float(p, "g", 0);
@@ -260,7 +262,7 @@ std::optional<Material> CreateMaterial(const SceneEntity &e, const std::string &
         m.vRoughness = r.v;
         m.eta = GetEta(p, "eta", 1.5f, textures.Folder());
         m.remapRoughness = p.GetOneBool("remaproughness", true);
-        m.layer = GetLayer(p, textures);
+        m.layer = GetLayer(p, textures, overrides);
         material = m;
     } else if (type == "coatedconductor") {
         CoatedConductorMaterial m;
@@ -273,7 +275,7 @@ std::optional<Material> CreateMaterial(const SceneEntity &e, const std::string &
         m.conductor.uRoughness = conductor.u;
         m.conductor.vRoughness = conductor.v;
         m.remapRoughness = m.conductor.remapRoughness = p.GetOneBool("remaproughness", true);
-        m.layer = GetLayer(p, textures);
+        m.layer = GetLayer(p, textures, overrides);
         material = m;
     } else if (type == "fabric") {
         material = CreateFabricMaterial(p, textures, overrides);

@@ -82,7 +82,7 @@ BxDF CoatedDiffuseMaterial::GetBxDF(const TextureEvalContext &ctx, SampledWavele
                         Microfacets(uRoughness, vRoughness, remapRoughness, ctx));
     return CoatedDiffuseBxDF(coat, DiffuseBxDF(r), layer.thickness.Evaluate(ctx),
                              Reflectance(layer.albedo, ctx, lambda), layer.g.Evaluate(ctx),
-                             layer.maxDepth, layer.nSamples);
+                             layer.maxDepth, layer.nSamples, layer.exitMIS);
 }
 
 // pbrt-v4 gives the conductor under the coat its index relative to the coat's.
@@ -98,7 +98,7 @@ BxDF CoatedConductorMaterial::GetBxDF(const TextureEvalContext &ctx,
                        ce / ieta, ck / ieta);
     return CoatedConductorBxDF(coat, base, layer.thickness.Evaluate(ctx),
                                Reflectance(layer.albedo, ctx, lambda), layer.g.Evaluate(ctx),
-                               layer.maxDepth, layer.nSamples);
+                               layer.maxDepth, layer.nSamples, layer.exitMIS);
 }
 
 BxDF FabricMaterial::GetBxDF(const TextureEvalContext &ctx, SampledWavelengths &lambda) const {
@@ -237,6 +237,19 @@ FabricSampling ParseFabricSampling(const std::string &name) {
     if (!sampling)
         throw std::invalid_argument(error);
     return *sampling;
+}
+
+LayeredExitMIS ParseLayeredEstimator(const std::string &name) {
+    if (name == "unbiased")
+        return LayeredExitMIS::InnerDirection;
+    if (name == "pbrt-v4")
+        return LayeredExitMIS::PbrtV4;
+    throw std::invalid_argument("unknown layered estimator \"" + name +
+                                "\": \"unbiased\" or \"pbrt-v4\"");
+}
+
+const char *LayeredEstimatorName(LayeredExitMIS mis) {
+    return mis == LayeredExitMIS::InnerDirection ? "unbiased" : "pbrt-v4";
 }
 
 }  // namespace pbrt

@@ -60,12 +60,14 @@ struct DiffuseTransmissionMaterial {
 };
 
 // The parameters of pbrt-v4's layered materials: a medium of the given thickness, albedo and
-// Henyey-Greenstein g between the interfaces, walked with at most maxDepth bounces, nSamples times.
+// Henyey-Greenstein g between the interfaces, walked with at most maxDepth bounces, nSamples
+// times; and which MIS weight f() gives the exit's connections (--layered-estimator).
 struct LayerParameters {
     FloatTexture thickness = 0.01f;
     SpectrumTexture albedo = Spectrum(0.f);
     FloatTexture g = 0;
     int maxDepth = 10, nSamples = 1;
+    LayeredExitMIS exitMIS = LayeredExitMIS::InnerDirection;
 };
 
 struct CoatedDiffuseMaterial {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "pbrt_ext/bxdfs/fabric.h"
+#include "pbrt_ext/bxdfs/layered.h"
 #include "pbrt_ext/integrators.h"
 #include "pbrt_ext/util/bounds.h"
 
@@ -22,6 +23,8 @@ struct RenderOverrides {
     std::optional<Bounds2i> pixelBounds;     // instead of the film's (wins over cropWindow)
     std::optional<PathStrategy> strategy;    // instead of the integrator's "mis"
     std::optional<FabricSampling> fabricSampler;  // for every fabric material
+    // The coated materials' f() estimator: ours, or pbrt-v4's biased one for its images.
+    LayeredExitMIS layeredExitMIS = LayeredExitMIS::InnerDirection;
     std::optional<std::string> lightSampler;  // "bvh", "power" or "uniform", instead of the integrator's
     std::optional<std::string> sampler;      // a Sampler name (SamplerNameError), instead of the scene's
     // An integrator name (IntegratorNameError) instead of the scene's, with the scene's
@@ -32,6 +35,11 @@ struct RenderOverrides {
 
 // "uniform", "cosine", "paper", "truncatedsinphi" or "best"; throws std::invalid_argument otherwise.
 FabricSampling ParseFabricSampling(const std::string &name);
+
+// --layered-estimator's names: "unbiased" (ours) or "pbrt-v4"; throws std::invalid_argument
+// otherwise.
+LayeredExitMIS ParseLayeredEstimator(const std::string &name);
+const char *LayeredEstimatorName(LayeredExitMIS mis);
 
 // Empty for a Sampler name pbrt_ext knows; otherwise the message naming the ones it does.
 std::optional<std::string> SamplerNameError(const std::string &name);

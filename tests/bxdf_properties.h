@@ -16,6 +16,7 @@
 #include "pbrt_ext/util/spectrum.h"
 #include "pbrt_ext/util/vecmath.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -229,6 +230,17 @@ PropertyResult CheckFiniteNonNegative(const BxDF &bxdf, Vector3f wo,
     }
     return result;
 }
+
+// Mean and variance of the mean of n per-sample values (the values not added count as 0).
+struct MeanEstimate {
+    double sum = 0, sumSq = 0;
+    void Add(double v) { sum += v, sumSq += v * v; }
+    double Mean(int n) const { return sum / n; }
+    double VarianceOfMean(int n) const {
+        double m = Mean(n);
+        return std::max(0.0, sumSq / n - m * m) / n;
+    }
+};
 
 // Uniform random inputs for the rho() estimators: uc, u1 and u2 spans of one length.
 struct RhoSamples {

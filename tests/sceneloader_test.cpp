@@ -58,6 +58,18 @@ RenderOverrides Quick() {
     return o;
 }
 
+// The BSDF where a ray down the z axis meets a unit sphere of the given material, described.
+std::string SphereBSDF(const std::string &fileName, const std::string &material,
+                       const RenderOverrides &overrides = Quick()) {
+    std::string file =
+        WriteScene(fileName, std::string(kHeader) + material + "\nShape \"sphere\"\n");
+    std::unique_ptr<Scene> scene = LoadScene(file, overrides);
+    pstd::optional<ShapeIntersection> hit = scene->Intersect(Ray(Point3f(0, 0, 5), Vector3f(0, 0, -1)));
+    if (!hit)
+        return "no hit";
+    return GetBSDF(scene->materials[0], hit->intr).ToString();
+}
+
 // A scene whose first line is `Sampler <sampler>`, lit by a uniform environment.
 std::string WriteSamplerScene(const std::string &name, const std::string &sampler) {
     return WriteScene(name, "Sampler " + sampler + R"(
@@ -151,15 +163,9 @@ Shape "sphere"
 }
 
 TEST(SceneLoader, FabricParametersReachTheMaterial) {
-    std::string file = WriteScene("fabric.pbrt", std::string(kHeader) + R"(
+    std::string bsdf = SphereBSDF("fabric.pbrt", R"(
 Material "fabric" "rgb reflectance" [0.9 0.2 0.1] "float roughness" 0.3 "float threadangle" 90
-    "float threadelevation" 20 "string sampler" "paper" "string normalization" "unitpeak"
-Shape "sphere"
-)");
-    std::unique_ptr<Scene> scene = LoadScene(file, Quick());
-    pstd::optional<ShapeIntersection> hit = scene->Intersect(Ray(Point3f(0, 0, 5), Vector3f(0, 0, -1)));
-    ASSERT_TRUE(hit);
-    std::string bsdf = GetBSDF(scene->materials[0], hit->intr).ToString();
+    "float threadelevation" 20 "string sampler" "paper" "string normalization" "unitpeak")");
     EXPECT_NE(bsdf.find("FabricBxDF"), std::string::npos) << bsdf;
     EXPECT_NE(bsdf.find("n: 16"), std::string::npos) << bsdf;  // ceil(1 + 29 * 0.49)
     EXPECT_NE(bsdf.find("normalization: unitpeak"), std::string::npos) << bsdf;
@@ -195,17 +201,23 @@ TEST(SceneLoader, PMJ02bnIsRenderedWithoutSubstitution) {
 }
 
 TEST(SceneLoader, CommandLineFabricSamplerOverridesTheFile) {
-    std::string file = WriteScene("fabric2.pbrt", std::string(kHeader) + R"(
-Material "fabric" "string sampler" "paper"
-Shape "sphere"
-)");
     RenderOverrides o = Quick();
     o.fabricSampler = FabricSampling::Uniform;
-    std::unique_ptr<Scene> scene = LoadScene(file, o);
-    pstd::optional<ShapeIntersection> hit = scene->Intersect(Ray(Point3f(0, 0, 5), Vector3f(0, 0, -1)));
-    ASSERT_TRUE(hit);
-    EXPECT_NE(GetBSDF(scene->materials[0], hit->intr).ToString().find("sampling: uniform"),
-              std::string::npos);
+    std::string bsdf = SphereBSDF("fabric2.pbrt", R"(Material "fabric" "string sampler" "paper")", o);
+    EXPECT_NE(bsdf.find("sampling: uniform"), std::string::npos) << bsdf;
+}
+
+// --layered-estimator reaches both coated materials; without it, their f() is ours.
+TEST(SceneLoader, CommandLineLayeredEstimatorReachesCoatedMaterials) {
+    RenderOverrides pbrtV4 = Quick();
+    pbrtV4.layeredExitMIS = LayeredExitMIS::PbrtV4;
+    for (const char *material : {R"(Material "coateddiffuse" "float roughness" 0.3)",
+                                 R"(Material "coatedconductor" "float interface.roughness" 0.3)"}) {
+        std::string bsdf = SphereBSDF("coated.pbrt", material);
+        EXPECT_NE(bsdf.find("exitMIS: inner"), std::string::npos) << bsdf;
+        bsdf = SphereBSDF("coated.pbrt", material, pbrtV4);
+        EXPECT_NE(bsdf.find("exitMIS: pbrt-v4"), std::string::npos) << bsdf;
+    }
 }
 
 TEST(SceneLoaderErrors, BadFabricParametersAreReportedWhereWritten) {
