@@ -19,7 +19,11 @@
 namespace pbrt {
 namespace {
 
-std::filesystem::path Folder() { return TestFolder("pbrt_ext_gbufferfilm_test"); }
+// One folder per test: ctest runs the cases as parallel processes.
+std::filesystem::path Folder() {
+    return TestFolder(std::string("pbrt_ext_gbufferfilm_test_") +
+                      testing::UnitTest::GetInstance()->current_test_info()->name());
+}
 
 // A 0.5-grey diffuse square at world z = 5 (x, y in [-1, 1], uv over it), seen from z = 2 down
 // +z; 16x16 pixels at fov 60 see 3.46 units across, so the square fills the middle.
