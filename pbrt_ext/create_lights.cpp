@@ -160,7 +160,7 @@ Light CreateInfiniteLight(const TransformedSceneEntity &e, Float scale,
     }
     Image image = EnvironmentImage(e, filename, folder);
     p.ReportUnused();
-    const RGBColorSpace &cs = RGBColorSpace::sRGB();
+    const RGBColorSpace &cs = image.ColorSpace();
     scale /= IlluminantPhotometric(cs);
     if (illuminance > 0)
         scale *= illuminance / UpperHemisphereIlluminance(image, cs);
@@ -199,7 +199,7 @@ Light CreateProjectionLight(const TransformedSceneEntity &e, Float scale, const 
     Float power = p.GetOneFloat("power", -1);
     Image image = ReadLightImage(e, folder);
     p.ReportUnused();
-    const RGBColorSpace &cs = RGBColorSpace::sRGB();
+    const RGBColorSpace &cs = image.ColorSpace();
     scale /= IlluminantPhotometric(cs);
     Transform worldFromLight = e.worldFromObject * Scale(1, -1, 1);
     ProjectionLight light(worldFromLight, std::move(image), &cs, scale, fov);
@@ -267,9 +267,10 @@ AreaLightDescription CreateAreaLight(const SceneEntity &e, const std::string &fo
         if (p.HasParameter("L"))
             throw ParseError(*p.Loc("L"), "an area light takes \"L\" or \"filename\", not both");
         // pbrt-v4 makes an image's texels 1 nit per unit of the illuminant of the colour space
-        // in force; the texels themselves are in the image's (sRGB: images carry none here).
-        light.image = std::make_shared<const EmissionImage>(ReadLightImage(e, folder),
-                                                            &RGBColorSpace::sRGB());
+        // in force; the texels themselves are in the image's.
+        Image image = ReadLightImage(e, folder);
+        const RGBColorSpace *imageColorSpace = &image.ColorSpace();
+        light.image = std::make_shared<const EmissionImage>(std::move(image), imageColorSpace);
         light.scale = p.GetOneFloat("scale", 1) / IlluminantPhotometric(p.ColorSpace());
     } else {
         Emission L = GetEmission(p, "L", folder);

@@ -61,7 +61,7 @@ SampledSpectrum SpectrumImageTexture::Evaluate(const TextureEvalContext &ctx,
     RGB rgb = ScaledLookup(ctx);
     if (invert) rgb = RGB(1 - rgb.r, 1 - rgb.g, 1 - rgb.b);
     rgb = RGB(std::max<Float>(0, rgb.r), std::max<Float>(0, rgb.g), std::max<Float>(0, rgb.b));
-    const RGBColorSpace &cs = colorSpace ? *colorSpace : RGBColorSpace::sRGB();
+    const RGBColorSpace &cs = mipmap->ColorSpace();
     switch (type) {
     case SpectrumType::Albedo:
         rgb = RGB(std::min<Float>(1, rgb.r), std::min<Float>(1, rgb.g), std::min<Float>(1, rgb.b));

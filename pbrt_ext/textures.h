@@ -143,11 +143,10 @@ struct FloatImageTexture : ImageTextureBase {
 };
 
 // The texel's RGB, clamped to >= 0 (and to [0, 1] for an albedo), becomes the RGB spectrum of
-// the texture's type in the colour space the image is in, at lookup (pbrt-v4's
+// the texture's type in the colour space the image is in (its MIPMap's), at lookup (pbrt-v4's
 // SpectrumImageTexture).
 struct SpectrumImageTexture : ImageTextureBase {
     SpectrumType type = SpectrumType::Albedo;
-    const RGBColorSpace *colorSpace = nullptr;  // nullptr: sRGB
     SampledSpectrum Evaluate(const TextureEvalContext &ctx, const SampledWavelengths &lambda) const;
 };
 

@@ -30,14 +30,15 @@ std::filesystem::path Folder() {
 
 // beforeFilm and material are written where their names say; the square at z = 5 fills the
 // middle of the 16 x 16 image.
-std::string WriteScene(const std::string &beforeFilm, const std::string &material) {
+std::string WriteScene(const std::string &beforeFilm, const std::string &material,
+                       const std::string &light = "LightSource \"infinite\" \"rgb L\" [1 1 1]") {
     std::filesystem::path scene = Folder() / "scene.pbrt";
     std::string out = (Folder() / "out.exr").string();
     std::ofstream(scene)
         << "LookAt 0 0 2  0 0 5  0 1 0\nCamera \"perspective\" \"float fov\" 60\n" << beforeFilm
         << "\nFilm \"rgb\" \"integer xresolution\" 16 \"integer yresolution\" 16 \"string filename\" \""
         << out << "\"\nSampler \"independent\" \"integer pixelsamples\" 64\n"
-        << "WorldBegin\nLightSource \"infinite\" \"rgb L\" [1 1 1]\n" << material
+        << "WorldBegin\n" << light << "\n" << material
         << "\nShape \"bilinearmesh\" \"point3 P\" [-1 -1 5  1 -1 5  -1 1 5  1 1 5]\n"
         << "  \"integer indices\" [0 1 2 3]\n";
     return scene.string();
@@ -48,8 +49,9 @@ struct Rendered {
     std::string colorSpace;  // the EXR's "colorSpace" attribute
 };
 
-Rendered Render(const std::string &beforeFilm, const std::string &material) {
-    std::unique_ptr<Scene> scene = LoadScene(WriteScene(beforeFilm, material), RenderOverrides{});
+Rendered Render(const std::string &beforeFilm, const std::string &material,
+                const std::string &light = "LightSource \"infinite\" \"rgb L\" [1 1 1]") {
+    std::unique_ptr<Scene> scene = LoadScene(WriteScene(beforeFilm, material, light), RenderOverrides{});
     RenderOptions options;
     options.quiet = true;
     pbrt::Render(*scene, options);
@@ -111,6 +113,42 @@ TEST(ColorSpaceDirective, AttributeEndRestoresTheSpace) {
     Rendered r = Render("", "AttributeBegin\nColorSpace \"aces2065-1\"\nAttributeEnd\n"
                             "Material \"diffuse\" \"rgb reflectance\" [0.3 0.5 0.2]");
     ExpectNear(r.middle, RGB(0.3f, 0.5f, 0.2f), "sRGB reflectance after the block");
+}
+
+// A 2 x 2 EXR of one colour, its chromaticities naming the given space.
+std::string WriteUniformEXR(const std::string &name, RGB rgb, const RGBColorSpace &cs) {
+    Image image(Point2i(2, 2));
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 2; ++x)
+            for (int c = 0; c < 3; ++c) image.SetChannel(Point2i(x, y), c, rgb[c]);
+    ImageMetadata md;
+    md.colorSpace = &cs;
+    std::string path = (Folder() / name).string();
+    image.Write(path, md);
+    return path;
+}
+
+// An image texture's RGB is in the space its EXR's chromaticities name (pbrt-v4's MIPMap colour
+// space), whatever the ColorSpace in force: here a Rec. 2020 texture in an sRGB scene.
+TEST(ColorSpaceDirective, ImageTextureIsInItsFilesSpace) {
+    const RGB rec2020(0.3f, 0.5f, 0.2f);
+    std::string texture = WriteUniformEXR("rec2020.exr", rec2020, RGBColorSpace::Rec2020());
+    Rendered r = Render("", "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"" + texture +
+                                "\"\nMaterial \"diffuse\" \"texture reflectance\" \"t\"");
+    ExpectNear(r.middle, Mul<RGB>(ConvertRGBColorSpace(RGBColorSpace::Rec2020(), RGBColorSpace::sRGB()), rec2020),
+               "Rec. 2020 texture on an sRGB film");
+}
+
+// So is an environment map's: a uniform Rec. 2020 sky over a grey square renders as the grey
+// times the sky's sRGB equivalent.
+TEST(ColorSpaceDirective, EnvironmentMapIsInItsFilesSpace) {
+    const RGB rec2020(0.3f, 0.5f, 0.2f);
+    std::string sky = WriteUniformEXR("sky.exr", rec2020, RGBColorSpace::Rec2020());
+    Rendered r = Render("", "Material \"diffuse\" \"rgb reflectance\" [0.5 0.5 0.5]",
+                        "LightSource \"infinite\" \"string filename\" \"" + sky + "\"");
+    RGB expected = Mul<RGB>(ConvertRGBColorSpace(RGBColorSpace::Rec2020(), RGBColorSpace::sRGB()), rec2020);
+    ExpectNear(r.middle, RGB(0.5f * expected.r, 0.5f * expected.g, 0.5f * expected.b),
+               "grey under a Rec. 2020 sky on an sRGB film");
 }
 
 TEST(ColorSpaceDirective, UnknownNameIsAnErrorAtItsLine) {

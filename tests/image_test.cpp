@@ -4,12 +4,15 @@
 #include "pbrt_ext/util/image.h"
 
 #include "pbrt_ext/util/colorspace.h"
+#include "pbrt_ext/util/log.h"
 
 #include <ImfChannelList.h>
 #include <ImfDoubleAttribute.h>
+#include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfIntAttribute.h>
+#include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 #include <gtest/gtest.h>
@@ -111,6 +114,55 @@ TEST_F(ImageFiles, ExrRecordsTheColorSpace) {
     TestImage(Point2i(4, 3), 1, 2).Write(plain, ImageMetadata{});
     Imf::InputFile none(plain.c_str());
     EXPECT_FALSE(Imf::hasChromaticities(none.header()));
+}
+
+// An EXR's chromaticities decide the colour space its RGB is read in, as pbrt-v4 matches them
+// (each coordinate within a relative 1e-3): ours as we write them, a Rec. 2020 file written
+// by another tool with the published primaries and D65 white, and sRGB, with a warning, for
+// primaries no space we know has.
+TEST_F(ImageFiles, ExrChromaticitiesGiveTheColorSpace) {
+    for (const RGBColorSpace *cs : {&RGBColorSpace::sRGB(), &RGBColorSpace::DCI_P3(),
+                                    &RGBColorSpace::Rec2020(), &RGBColorSpace::ACES2065_1()}) {
+        ImageMetadata md;
+        md.colorSpace = cs;
+        std::string path = Path("space.exr");
+        TestImage(Point2i(2, 2), 1, 3).Write(path, md);
+        EXPECT_EQ(&Image::Read(path).ColorSpace(), cs) << cs->Name();
+    }
+    std::string plain = Path("plain.exr");
+    TestImage(Point2i(2, 2), 1, 3).Write(plain, ImageMetadata{});
+    EXPECT_EQ(&Image::Read(plain).ColorSpace(), &RGBColorSpace::sRGB());
+
+    auto writeWith = [&](const std::string &name, Imf::Chromaticities c) {
+        std::string path = Path(name);
+        Imf::Header header(1, 1);
+        Imf::addChromaticities(header, c);
+        float rgb[3] = {0.25f, 0.5f, 0.75f};
+        Imf::FrameBuffer fb;
+        for (int i = 0; i < 3; ++i) {
+            const char *channel[3] = {"R", "G", "B"};
+            header.channels().insert(channel[i], Imf::Channel(Imf::FLOAT));
+            fb.insert(channel[i], Imf::Slice(Imf::FLOAT, reinterpret_cast<char *>(&rgb[i]),
+                                             sizeof(rgb), sizeof(rgb)));
+        }
+        Imf::OutputFile out(path.c_str(), header);
+        out.setFrameBuffer(fb);
+        out.writePixels(1);
+        return path;
+    };
+    Imath::V2f d65(0.3127f, 0.3290f);
+    std::string rec2020 = writeWith("rec2020.exr", Imf::Chromaticities({0.708f, 0.292f}, {0.170f, 0.797f},
+                                                                      {0.131f, 0.046f}, d65));
+    EXPECT_EQ(&Image::Read(rec2020).ColorSpace(), &RGBColorSpace::Rec2020());
+    std::string adobe = writeWith("adobe.exr", Imf::Chromaticities({0.64f, 0.33f}, {0.21f, 0.71f},
+                                                                  {0.15f, 0.06f}, d65));
+    int warnings = Log().warnings;
+    Log().quiet = true;
+    Image image = Image::Read(adobe);
+    Log().quiet = false;
+    EXPECT_EQ(&image.ColorSpace(), &RGBColorSpace::sRGB());
+    EXPECT_EQ(Log().warnings, warnings + 1);
+    EXPECT_EQ(image.GetChannels(Point2i(0, 0)).g, 0.5f);
 }
 
 TEST_F(ImageFiles, ExrCropSetsDataAndDisplayWindows) {

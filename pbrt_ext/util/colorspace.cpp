@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -101,6 +102,22 @@ std::string RGBColorSpace::NamesList() {
     for (const NamedColorSpace &n : kNamedColorSpaces)
         list += (list.empty() ? "\"" : ", \"") + std::string(n.name) + "\"";
     return list;
+}
+
+const RGBColorSpace *RGBColorSpace::Lookup(Chromaticity r, Chromaticity g, Chromaticity b,
+                                           Chromaticity w) {
+    auto close = [](Float given, Float known) {
+        return given == known || std::abs((given - known) / known) < 1e-3f;
+    };
+    auto same = [&](Chromaticity given, Chromaticity known) {
+        return close(given.x, known.x) && close(given.y, known.y);
+    };
+    for (const NamedColorSpace &n : kNamedColorSpaces) {
+        const RGBColorSpace &cs = n.get();
+        if (same(r, cs.r) && same(g, cs.g) && same(b, cs.b) && same(w, cs.w))
+            return &cs;
+    }
+    return nullptr;
 }
 
 bool RGBColorSpace::operator==(const RGBColorSpace &cs) const {

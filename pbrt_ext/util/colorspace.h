@@ -46,6 +46,10 @@ class RGBColorSpace {
     static const RGBColorSpace *GetNamed(std::string_view name);
     // The names GetNamed knows, quoted, for error messages.
     static std::string NamesList();
+    // The named space whose primaries and white are the given ones, each coordinate within a
+    // relative 1e-3 (pbrt-v4's Lookup, for an EXR's chromaticities); null if none is.
+    static const RGBColorSpace *Lookup(Chromaticity r, Chromaticity g, Chromaticity b,
+                                       Chromaticity w);
 
     bool operator==(const RGBColorSpace &cs) const;
     bool operator!=(const RGBColorSpace &cs) const { return !(*this == cs); }

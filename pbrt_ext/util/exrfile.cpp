@@ -7,6 +7,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 #include <ImfTileDescription.h>
 #include <openexr.h>
@@ -54,6 +55,11 @@ class EXRReader : public ImageFileReader {
         for (Imf::Header::ConstIterator a = header.begin(); a != header.end(); ++a)
             if (const auto *text = dynamic_cast<const Imf::StringAttribute *>(&a.attribute()))
                 spec.stringAttributes[a.name()] = text->value();
+        if (Imf::hasChromaticities(header)) {
+            const Imf::Chromaticities &c = Imf::chromaticities(header);
+            spec.chromaticities = {c.red.x,  c.red.y,  c.green.x, c.green.y,
+                                   c.blue.x, c.blue.y, c.white.x, c.white.y};
+        }
         // OpenEXR decodes a block of scanlines at a time, compressed and uncompressed (a row of
         // tiles for a tiled file), however few rows the image has: a header 2 million pixels
         // wide declares gigabytes of it (found by the image fuzz target, docs/fuzzing.md).

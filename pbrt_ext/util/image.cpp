@@ -81,6 +81,10 @@ std::unique_ptr<ImageFileReader> OpenImageFile(const std::string &path) {
 
 bool IsEXRFilename(const std::string &path) { return LowercaseExtension(path) == ".exr"; }
 
+const RGBColorSpace &Image::ColorSpace() const {
+    return colorSpace ? *colorSpace : RGBColorSpace::sRGB();
+}
+
 Image::Image(Point2i res) : resolution(res) {
     if (res.x < 0 || res.y < 0)
         throw std::runtime_error("Image: negative resolution " + std::to_string(res.x) + "x" +
@@ -189,6 +193,22 @@ RawImage ReadRawImage(const std::string &path, uint64_t keptBytesPerChannel, uin
     return raw;
 }
 
+// The colour space an image file's header names: its EXR chromaticities, matched to a space we
+// know as pbrt-v4 matches them; sRGB, with a warning as pbrt-v4 gives, for others.
+const RGBColorSpace *ColorSpaceOf(const std::string &path, const ImageFileSpec &spec) {
+    if (!spec.chromaticities)
+        return nullptr;
+    const std::array<float, 8> &c = *spec.chromaticities;
+    if (const RGBColorSpace *cs = RGBColorSpace::Lookup(Chromaticity{c[0], c[1]}, Chromaticity{c[2], c[3]},
+                                                        Chromaticity{c[4], c[5]}, Chromaticity{c[6], c[7]}))
+        return cs;
+    Warning("%s: its chromaticities r (%g, %g) g (%g, %g) b (%g, %g) w (%g, %g) are none of %s; "
+            "read as sRGB",
+            path.c_str(), c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7],
+            RGBColorSpace::NamesList().c_str());
+    return nullptr;
+}
+
 }  // namespace
 
 EXRChannels ReadEXRChannels(const std::string &path, uint64_t keptBytesPerPixel) {
@@ -221,9 +241,11 @@ Image Image::Read(const std::string &path, ColorEncoding encoding, ImageChannels
         Image image;
         image.resolution = Point2i(spec.width, spec.height);
         image.KeepBytes(raw, spec.nChannels, channel, encoding);
+        image.colorSpace = ColorSpaceOf(path, spec);
         return image;
     }
     Image image(Point2i(spec.width, spec.height));
+    image.colorSpace = ColorSpaceOf(path, spec);
     for (int y = 0; y < spec.height; ++y)
         for (int x = 0; x < spec.width; ++x)
             for (int c = 0; c < 3; ++c) {

@@ -213,6 +213,9 @@ class Image {
     void SetChannel(Point2i p, int c, Float value);
     // Whether the pixels are kept as the file's bytes (Read()).
     bool Is8Bit() const { return !bytes.empty(); }
+    // The colour space of the RGB values: an EXR's "chromaticities" where Read() found them
+    // (pbrt-v4's ImageMetadata::GetColorSpace), sRGB otherwise.
+    const RGBColorSpace &ColorSpace() const;
 
     // Lookups at continuous coordinates st in [0, 1]^2 over the whole image (pixel centers at
     // half-integers, as pbrt-v4).
@@ -281,6 +284,7 @@ class Image {
     int byteChannels = 0;
     std::array<Float, 256> toLinear{};  // 8-bit: the linear value of each byte
     ColorEncoding byteEncoding = ColorEncoding::Linear();  // 8-bit: what made toLinear
+    const RGBColorSpace *colorSpace = nullptr;              // null: sRGB
 };
 
 }  // namespace pbrt

@@ -3,8 +3,10 @@
 // picks by the file's signature and decides what the header allows before any pixel is decoded.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,9 @@ struct ImageFileSpec {
     std::vector<std::string> channelNames;
     // The header's string attributes (EXR only: a film slice's description, filmslice.h).
     std::map<std::string, std::string> stringAttributes;
+    // The colour space's primaries and white as xy: red, green, blue, white (EXR only, from its
+    // standard "chromaticities" attribute; none when the file has none).
+    std::optional<std::array<float, 8>> chromaticities;
     // What the decoder allocates besides the float pixels it returns, from the header alone.
     uint64_t decodeBufferBytes = 0;
 };
