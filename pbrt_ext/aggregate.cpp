@@ -10,8 +10,10 @@
 #include <cassert>
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace pbrt {
@@ -323,7 +325,7 @@ struct SceneData {
 
 struct InstanceData {
     int objectId;
-    AnimatedTransform worldFromInstance;
+    KeyframedTransform worldFromInstance;
 };
 
 // A keyframe as Embree's instance motion blur takes it.
@@ -348,7 +350,7 @@ struct EmbreeAggregate::Impl {
     std::vector<std::string> objectNames;
     std::vector<InstanceData> instances;
     // The interval of the moving instances' keyframes; a ray's time is mapped into it.
-    AnimatedTransform motionTimes;
+    std::optional<std::pair<Float, Float>> motionTimes;
     int openObject = -1;
     bool committed = false;
     RayLog *rayLog = nullptr;
@@ -447,17 +449,21 @@ struct EmbreeAggregate::Impl {
                                                           1, attrs);
     }
 
-    void SetMotionTimes(const AnimatedTransform &t) {
-        bool first = !motionTimes.IsAnimated();
-        if (!first && (t.StartTime() != motionTimes.StartTime() ||
-                       t.EndTime() != motionTimes.EndTime()))
+    void SetMotionTimes(const KeyframedTransform &t) {
+        std::pair<Float, Float> times{t.StartTime(), t.EndTime()};
+        if (motionTimes && *motionTimes != times)
             throw std::runtime_error("moving instances with different time intervals");
-        if (first)
-            motionTimes = t;
+        motionTimes = times;
     }
-    // The ray's time as Embree's fraction of the moving instances' interval.
+    // The ray's time as Embree's fraction of the moving instances' interval, clamped to it as
+    // pbrt-v4 clamps.
     Float EmbreeTime(Float time) const {
-        return motionTimes.IsAnimated() ? motionTimes.Fraction(time) : 0;
+        if (!motionTimes)
+            return 0;
+        auto [start, end] = *motionTimes;
+        if (!(end > start))
+            return time < start ? 0 : 1;
+        return Clamp((time - start) / (end - start), 0, 1);
     }
 
     // A hit inside an instance, described in the instance's space at the ray's time, then
@@ -632,10 +638,14 @@ void EmbreeAggregate::EndObject() {
 }
 
 int EmbreeAggregate::AddInstance(int objectId, const Transform &worldFromInstance) {
-    return AddInstance(objectId, AnimatedTransform(worldFromInstance));
+    return AddInstance(objectId, KeyframedTransform(AnimatedTransform(worldFromInstance)));
 }
 
 int EmbreeAggregate::AddInstance(int objectId, const AnimatedTransform &worldFromInstance) {
+    return AddInstance(objectId, KeyframedTransform(worldFromInstance));
+}
+
+int EmbreeAggregate::AddInstance(int objectId, const KeyframedTransform &worldFromInstance) {
     if (objectId < 0 || objectId >= int(impl->objects.size()))
         throw std::runtime_error("instance of unknown object " + std::to_string(objectId));
     if (objectId == impl->openObject)
@@ -650,10 +660,11 @@ int EmbreeAggregate::AddInstance(int objectId, const AnimatedTransform &worldFro
     RTCGeometry geom = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(geom, impl->objects[objectId].scene);
     if (worldFromInstance.IsAnimated()) {
-        rtcSetGeometryTimeStepCount(geom, 2);
-        for (unsigned step = 0; step < 2; ++step) {
-            RTCQuaternionDecomposition q = ToEmbree(worldFromInstance.Keyframes()[step]);
-            rtcSetGeometryTransformQuaternion(geom, step, &q);
+        unsigned keyframes = unsigned(worldFromInstance.StepCount()) + 1;
+        rtcSetGeometryTimeStepCount(geom, keyframes);
+        for (unsigned k = 0; k < keyframes; ++k) {
+            RTCQuaternionDecomposition q = ToEmbree(worldFromInstance.Keyframe(int(k)));
+            rtcSetGeometryTransformQuaternion(geom, k, &q);
         }
     } else {
         const SquareMatrix<4> &m = worldFromInstance.Start().GetMatrix();
@@ -724,7 +735,7 @@ bool EmbreeAggregate::Traverse(const LoggedRay &logged) const {
     return impl->ClosestHit(logged.ray, logged.tMax).hit.geomID != RTC_INVALID_GEOMETRY_ID;
 }
 
-bool EmbreeAggregate::HasMotion() const { return impl->motionTimes.IsAnimated(); }
+bool EmbreeAggregate::HasMotion() const { return impl->motionTimes.has_value(); }
 
 Bounds3f EmbreeAggregate::WorldBound() const {
     if (!impl->committed || impl->world.geometries.empty())

@@ -82,6 +82,8 @@ class EmbreeAggregate {
     // ray.time meeting the object where it is then. Every moving instance of an aggregate
     // shares one time interval (TransformTimes); another one throws std::runtime_error.
     int AddInstance(int objectId, const AnimatedTransform &worldFromInstance);
+    // The same through every keyframe, each a time step of Embree's.
+    int AddInstance(int objectId, const KeyframedTransform &worldFromInstance);
     // Whether some instance moves.
     bool HasMotion() const;
 

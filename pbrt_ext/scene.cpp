@@ -136,7 +136,7 @@ void SceneBuilder::EndObject() {
 }
 
 void SceneBuilder::AddObjectInstance(const std::string &name,
-                                     const AnimatedTransform &worldFromInstance) {
+                                     const KeyframedTransform &worldFromInstance) {
     auto it = objects.find(name);
     if (it == objects.end())
         throw std::invalid_argument("instance of undefined object \"" + name + "\"");

@@ -185,7 +185,10 @@ class SceneBuilder {
     // one light). Unknown or repeated names throw std::invalid_argument.
     void BeginObject(const std::string &name);
     void EndObject();
-    void AddObjectInstance(const std::string &name, const AnimatedTransform &worldFromInstance);
+    void AddObjectInstance(const std::string &name, const KeyframedTransform &worldFromInstance);
+    void AddObjectInstance(const std::string &name, const AnimatedTransform &worldFromInstance) {
+        AddObjectInstance(name, KeyframedTransform(worldFromInstance));
+    }
     void AddObjectInstance(const std::string &name, const Transform &worldFromInstance) {
         AddObjectInstance(name, AnimatedTransform(worldFromInstance));
     }

@@ -461,13 +461,6 @@ void BasicSceneBuilder::Shape(const std::string &name, ParsedParameterVector par
     shape.insideObject = activeObject;
     shape.insideMedium = graphicsState.insideMedium;
     shape.outsideMedium = graphicsState.outsideMedium;
-    if (shape.IsAnimated() && !activeObject.empty()) {
-        // Embree instances one level deep: a moving shape inside an object does not move.
-        if (FirstTime("moving shape in object"))
-            WarningAt(loc, "shapes inside ObjectBegin do not move; move the instances instead "
-                           "(the start transform is used)");
-        shape.worldFromObjectEnd = shape.worldFromObject;
-    }
     if (shape.IsAnimated() && shape.areaLight) {
         if (FirstTime("moving area light"))
             WarningAt(loc, "moving shapes do not emit (area lights on animated shapes are not "

@@ -76,6 +76,29 @@ ObjectEnd
     EXPECT_NEAR(RenderedRed(camera), kSkyShowing, kTolerance);
 }
 
+// A moving shape inside an object moves in every instance, by its own motion after the
+// instance's (Embree nests one level: each instance places the shape with the product).
+TEST(MotionBlur, MovingShapeInsideAnObjectMovesInEachInstance) {
+    const std::string ball = "ObjectBegin \"ball\"\n" + MoveAlongX(-3) + "Shape \"sphere\"\nObjectEnd\n";
+    std::string still = WriteScene("nested-still.pbrt", OnePixel("") + ball + "ObjectInstance \"ball\"\n");
+    EXPECT_NEAR(RenderedRed(still), kSkyShowing, kTolerance);
+    // The instance moves from x = 0 to -3 while the sphere moves from -3 to 3 within it: x runs
+    // from -3 to 0, over the pixel for the last third.
+    std::string moving = WriteScene("nested-moving.pbrt", OnePixel("") + ball + R"(
+ActiveTransform StartTime
+Translate 0 0 0
+ActiveTransform EndTime
+Translate -3 0 0
+ActiveTransform All
+ObjectInstance "ball"
+)");
+    EXPECT_NEAR(RenderedRed(moving), kSkyShowing, kTolerance);
+    // Placed 10 to the side, the instance keeps the sphere away from the pixel.
+    std::string aside = WriteScene("nested-aside.pbrt", OnePixel("") + ball +
+                                                            "Translate 0 10 0\nObjectInstance \"ball\"\n");
+    EXPECT_NEAR(RenderedRed(aside), 1, kTolerance);
+}
+
 TEST(MotionBlur, ShutterAndTransformTimesSelectThePartOfTheMotionSeen) {
     // The motion spans times 0..2; the shutter sees 0..1, x from -3 to 0: the sphere covers
     // the pixel while x > -1, the last third of the shutter.

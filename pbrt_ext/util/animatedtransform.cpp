@@ -2,9 +2,11 @@
 
 #include "pbrt_ext/util/math.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 
 namespace pbrt {
 
@@ -173,6 +175,42 @@ Transform AnimatedTransform::Interpolate(Float time) const {
         for (int j = 0; j < 3; ++j)
             d.scale[i][j] = Lerp(f, keys[0].scale[i][j], keys[1].scale[i][j]);
     return Compose(d);
+}
+
+KeyframedTransform::KeyframedTransform(const AnimatedTransform &outer,
+                                       const AnimatedTransform &inner, int stepCount) {
+    const AnimatedTransform &timing = inner.IsAnimated() ? inner : outer;
+    Float t0 = timing.StartTime(), t1 = timing.EndTime();
+    auto at = [&](int k) {
+        Float time = k == stepCount ? t1 : Lerp(Float(k) / stepCount, t0, t1);
+        return std::pair{time, outer.Interpolate(time) * inner.Interpolate(time)};
+    };
+    auto [startTime, start] = at(0);
+    for (int k = 1; k <= stepCount; ++k) {
+        auto [endTime, end] = at(k);
+        steps.emplace_back(start, startTime, end, endTime);
+        startTime = endTime;
+        start = end;
+    }
+}
+
+bool KeyframedTransform::IsAnimated() const {
+    for (const AnimatedTransform &step : steps)
+        if (step.IsAnimated())
+            return true;
+    return false;
+}
+
+TransformDecomposition KeyframedTransform::Keyframe(int k) const {
+    return Decompose(k < StepCount() ? steps[size_t(k)].Start() : steps.back().End());
+}
+
+Transform KeyframedTransform::Interpolate(Float time) const {
+    Float f = Clamp((time - StartTime()) / (EndTime() - StartTime()), 0, 1);
+    if (!(EndTime() > StartTime()))
+        f = 0;
+    int k = std::min(StepCount() - 1, int(f * StepCount()));
+    return steps[size_t(k)].Interpolate(time);
 }
 
 std::string AnimatedTransform::ToString() const {

@@ -18,6 +18,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 namespace pbrt {
 
@@ -75,6 +76,37 @@ class AnimatedTransform {
     Float startTime = 0, endTime = 1;
     bool actuallyAnimated = false;
     std::array<TransformDecomposition, 2> keys;
+};
+
+// A motion through keyframes at equal steps of its interval, each step interpolated as an
+// AnimatedTransform interpolates, which is what Embree's instance motion blur does with more than
+// two time steps. It carries the product outer(t) * inner(t) of two motions: a moving shape
+// inside an object instance (moving or not), which Embree's one level of instances cannot nest.
+// pbrt-v4 composes the two interpolations per ray; that product is no AnimatedTransform, so it is
+// sampled at the keyframes. Exact there, and between them wherever outer is a similarity (a
+// static instance placed by rotation, translation and uniform scale: left factors commute with
+// the interpolation) or both only translate; otherwise within the interpolation's error over a
+// step (tests/animatedtransform_test.cpp measures it).
+class KeyframedTransform {
+  public:
+    KeyframedTransform() = default;
+    explicit KeyframedTransform(const AnimatedTransform &t) : steps{t} {}
+    // outer(t) * inner(t) at stepCount + 1 equally spaced times over the interval of the one that
+    // moves (both move over the scene's TransformTimes).
+    KeyframedTransform(const AnimatedTransform &outer, const AnimatedTransform &inner,
+                       int stepCount);
+
+    bool IsAnimated() const;
+    Float StartTime() const { return steps.front().StartTime(); }
+    Float EndTime() const { return steps.back().EndTime(); }
+    int StepCount() const { return int(steps.size()); }
+    // Keyframe k of 0, ..., StepCount(), as Embree takes it.
+    TransformDecomposition Keyframe(int k) const;
+    const Transform &Start() const { return steps.front().Start(); }
+    Transform Interpolate(Float time) const;
+
+  private:
+    std::vector<AnimatedTransform> steps;
 };
 
 }  // namespace pbrt
