@@ -100,8 +100,10 @@ Medium CreateMedium(const TransformedSceneEntity &medium, const std::string &fol
 
 // Shapes (create_shapes.cpp): adds the shape to the builder, or warns and skips types this
 // renderer lacks. The alpha parameter (a float or a float texture) comes through `textures`,
-// whose folder is also where meshes are looked for.
+// whose folder is also where meshes are looked for. A displaced mesh's "edgelength" is
+// multiplied by displacementEdgeScale.
 void AddShape(SceneBuilder &builder, const ShapeSceneEntity &shape, int material,
-              std::optional<AreaLightDescription> emission, TextureResolver &textures);
+              std::optional<AreaLightDescription> emission, TextureResolver &textures,
+              Float displacementEdgeScale);
 
 }  // namespace pbrt

@@ -95,10 +95,10 @@ void AddTriangleMesh(SceneBuilder &builder, const ShapeSceneEntity &e,
 // a point of its render space, the world moved to put the camera at the origin; a 3D texture is
 // then looked up at the object-space point plus the camera's position, and so it is here.
 PlyMesh Displaced(const ShapeSceneEntity &e, PlyMesh ply, TextureResolver &textures,
-                  Vector3f cameraPosition) {
+                  Vector3f cameraPosition, Float edgeScale) {
     const ParameterDictionary &p = e.parameters;
     FloatTexture displacement = textures.Float(p, "displacement", 0);
-    Float edgeLength = p.GetOneFloat("edgelength", 1);
+    Float edgeLength = p.GetOneFloat("edgelength", 1) * edgeScale;
     // A vertex (p, n, uv), three indices and what the mesh and Embree keep per triangle.
     constexpr uint64_t kBytesPerTriangle = 128;
     try {
@@ -115,7 +115,7 @@ PlyMesh Displaced(const ShapeSceneEntity &e, PlyMesh ply, TextureResolver &textu
 }
 
 void AddPlyMesh(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearance &a,
-                TextureResolver &textures) {
+                TextureResolver &textures, Float displacementEdgeScale) {
     const ParameterDictionary &p = e.parameters;
     std::string filename = p.GetOneString("filename", "");
     if (filename.empty())
@@ -129,7 +129,8 @@ void AddPlyMesh(SceneBuilder &builder, const ShapeSceneEntity &e, const Appearan
     PlyMesh ply = ReadPly(path);
     if (displaced)
         ply = Displaced(e, std::move(ply), textures,
-                        Vector3f(builder.GetCamera().WorldFromCamera()(Point3f(0, 0, 0))));
+                        Vector3f(builder.GetCamera().WorldFromCamera()(Point3f(0, 0, 0))),
+                        displacementEdgeScale);
     p.ReportUnused();
     CheckPrimitives(e, a, ply.triIndices.size() / 3);
     CheckPrimitives(e, a, ply.quadIndices.size() / 4);
@@ -300,13 +301,14 @@ void AddCylinder(SceneBuilder &builder, const ShapeSceneEntity &e, const Appeara
 }  // namespace
 
 void AddShape(SceneBuilder &builder, const ShapeSceneEntity &e, int material,
-              std::optional<AreaLightDescription> emission, TextureResolver &textures) {
+              std::optional<AreaLightDescription> emission, TextureResolver &textures,
+              Float displacementEdgeScale) {
     const ParameterDictionary &p = e.parameters;
     Appearance a{material, std::move(emission), Alpha(p, textures)};
     if (e.name == "trianglemesh")
         return AddTriangleMesh(builder, e, a);
     if (e.name == "plymesh")
-        return AddPlyMesh(builder, e, a, textures);
+        return AddPlyMesh(builder, e, a, textures, displacementEdgeScale);
     if (e.name == "bilinearmesh")
         return AddBilinearMesh(builder, e, a, textures.Folder());
     if (e.name == "cylinder")

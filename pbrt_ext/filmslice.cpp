@@ -41,10 +41,11 @@ std::string FilmIdentity(const RGBFilm &film) {
 std::string IntegratorIdentity(const Scene &scene, const RenderOverrides &o) {
     const PathIntegratorOptions &i = scene.integratorOptions;
     return fmt::format("type {} maxdepth {} strategy {} regularize {} spectralmis {} fabric-sampler {} "
-                       "light-sampler {} layered-estimator {}",
+                       "light-sampler {} layered-estimator {} displacement-edge-scale {:.9g}",
                        int(i.type), i.maxDepth, ToString(i.strategy), i.regularize, i.spectralMIS,
                        o.fabricSampler ? kFabricSamplingNames[int(*o.fabricSampler)] : "scene's",
-                       o.lightSampler.value_or("scene's"), LayeredEstimatorName(o.layeredExitMIS));
+                       o.lightSampler.value_or("scene's"), LayeredEstimatorName(o.layeredExitMIS),
+                       o.displacementEdgeScale);
 }
 
 size_t PixelCount(const Bounds2i &b) { return size_t(b.Area()); }

@@ -25,6 +25,9 @@ struct RenderOverrides {
     std::optional<FabricSampling> fabricSampler;  // for every fabric material
     // The coated materials' f() estimator: ours, or pbrt-v4's biased one for its images.
     LayeredExitMIS layeredExitMIS = LayeredExitMIS::InnerDirection;
+    // Multiplies every displaced mesh's "edgelength" (pbrt-v4's --displacement-edge-scale; a
+    // scene's Option "displacementedgescale" wins over it, as in pbrt-v4).
+    Float displacementEdgeScale = 1;
     std::optional<std::string> lightSampler;  // "bvh", "power" or "uniform", instead of the integrator's
     std::optional<std::string> sampler;      // a Sampler name (SamplerNameError), instead of the scene's
     // An integrator name (IntegratorNameError) instead of the scene's, with the scene's

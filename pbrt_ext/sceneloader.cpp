@@ -103,16 +103,30 @@ class MediumResolver {
     std::map<std::string, int> indices;
 };
 
+// The Options this renderer follows; the others are warned about.
+constexpr const char *kDisplacementEdgeScale = "displacementedgescale";
+
 void WarnAboutOptions(const SceneDescription &scene) {
     for (const auto &[name, option] : scene.options)
-        WarningAt(option.loc, "Option \"%s\" is not supported: ignored", name.c_str());
+        if (name != kDisplacementEdgeScale)
+            WarningAt(option.loc, "Option \"%s\" is not supported: ignored", name.c_str());
 }
 
-// The resolvers that turn a shape's names into the builder's indices.
+// The scene's Option, else the command line's (pbrt-v4 applies the file's over its command
+// line's). The scene description has checked that the value is a finite float.
+Float DisplacementEdgeScale(const SceneDescription &scene, const RenderOverrides &overrides) {
+    auto option = scene.options.find(kDisplacementEdgeScale);
+    return option == scene.options.end() ? overrides.displacementEdgeScale
+                                         : std::stof(option->second.value);
+}
+
+// What turns a shape's names into the builder's indices, and the scale of its displacement's
+// edge length.
 struct Resolvers {
     MaterialResolver &materials;
     TextureResolver &textures;
     MediumResolver &media;
+    Float displacementEdgeScale = 1;
 };
 
 // The keyframes of a moving shape or instance, at the scene's TransformTimes.
@@ -138,14 +152,13 @@ MovingShape AddMovingShapeObject(const SceneDescription &scene, int index, Scene
     still.worldFromObject = still.worldFromObjectEnd = Transform();
     builder.SetMediumInterface(r.media.For(shape));
     builder.BeginObject(moving.object);
-    AddShape(builder, still, r.materials.For(shape), {}, r.textures);
+    AddShape(builder, still, r.materials.For(shape), {}, r.textures, r.displacementEdgeScale);
     builder.EndObject();
     return moving;
 }
 
 void AddShapes(const SceneDescription &scene, const std::vector<int> &indices,
                SceneBuilder &builder, Resolvers &r) {
-    auto &[materials, textures, media] = r;
     for (int i : indices) {
         const ShapeSceneEntity &shape = scene.shapes[i];
         if (shape.IsAnimated()) {
@@ -153,11 +166,12 @@ void AddShapes(const SceneDescription &scene, const std::vector<int> &indices,
             builder.AddObjectInstance(moving.object, moving.motion);
             continue;
         }
-        builder.SetMediumInterface(media.For(shape));
+        builder.SetMediumInterface(r.media.For(shape));
         std::optional<AreaLightDescription> emission;
         if (shape.areaLight)
-            emission = CreateAreaLight(*shape.areaLight, textures.Folder());
-        AddShape(builder, shape, materials.For(shape), emission, textures);
+            emission = CreateAreaLight(*shape.areaLight, r.textures.Folder());
+        AddShape(builder, shape, r.materials.For(shape), emission, r.textures,
+                 r.displacementEdgeScale);
     }
 }
 
@@ -230,7 +244,7 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
     TextureResolver textures(scene, folder);
     MaterialResolver materials(scene, builder, overrides, textures);
     MediumResolver media(scene, builder, folder);
-    Resolvers resolvers{materials, textures, media};
+    Resolvers resolvers{materials, textures, media, DisplacementEdgeScale(scene, overrides)};
     builder.SetCameraMedium(media.For(scene.camera.medium));
 
     std::vector<int> worldShapes;

@@ -88,18 +88,41 @@ TEST(MeshDisplacement, RefusesWhatItCannotDo) {
     EXPECT_THROW(DisplaceMesh(Square(), Transform(), 0.001f, 1000, Flat), std::invalid_argument);
 }
 
-TEST(MeshDisplacement, SceneErrorsAreAtTheDisplacementParameter) {
+// The scenes' tile displaced with edges below edgeLength, after the options (before
+// WorldBegin); its path.
+std::string DisplacedTileScene(const std::string &name, const std::string &options, const char *edgeLength) {
     std::filesystem::path dir = TestFolder("pbrt_ext_displacement_test");
     std::filesystem::copy_file(std::filesystem::path(PBRT_EXT_TEST_DATA_DIR) / "../../scenes/meshes/tile.ply",
                                dir / "tile.ply", std::filesystem::copy_options::overwrite_existing);
-    std::filesystem::path scene = dir / "scene.pbrt";
-    std::ofstream(scene) << "Camera \"perspective\"\nWorldBegin\n"
+    std::filesystem::path scene = dir / name;
+    std::ofstream(scene) << "Camera \"perspective\"\n" << options << "WorldBegin\n"
                          << "Texture \"d\" \"float\" \"constant\" \"float value\" 0.1\n"
                          << "Shape \"plymesh\" \"string filename\" \"tile.ply\" \"texture displacement\" \"d\" "
-                            "\"float edgelength\" 1e-7\n";
-    EXPECT_THAT(LoadErrorAfterPath(scene.string()),
-                testing::AllOf(testing::StartsWith(":4:46: error: displacing the mesh makes more than"),
+                            "\"float edgelength\" " << edgeLength << "\n";
+    return scene.string();
+}
+
+constexpr const char *kTooFine = ":4:46: error: displacing the mesh makes more than";
+
+TEST(MeshDisplacement, SceneErrorsAreAtTheDisplacementParameter) {
+    EXPECT_THAT(LoadErrorAfterPath(DisplacedTileScene("fine.pbrt", "", "1e-7")),
+                testing::AllOf(testing::StartsWith(kTooFine),
                                testing::HasSubstr("expected a larger \"edgelength\"")));
+}
+
+// pbrt-v4's --displacement-edge-scale and Option "displacementedgescale" multiply the edge
+// length; the file's Option wins over the command line, as in pbrt-v4. Seen through the triangle
+// budget: edges of 0.05 are fine, scaled by 1e-5 they are too many.
+TEST(MeshDisplacement, EdgeScaleFromTheCommandLineOrTheFileScalesTheEdgeLength) {
+    RenderOverrides scaled;
+    scaled.displacementEdgeScale = 1e-5f;
+    std::string plain = DisplacedTileScene("plain.pbrt", "", "0.05");
+    EXPECT_EQ(LoadErrorAfterPath(plain), "no error");
+    EXPECT_THAT(LoadErrorAfterPath(plain, scaled), testing::StartsWith(kTooFine));
+    std::string option = DisplacedTileScene("option.pbrt", "Option \"displacementedgescale\" 1e-5\n", "0.05");
+    EXPECT_THAT(LoadErrorAfterPath(option), testing::StartsWith(":5:46: error: displacing the mesh"));
+    std::string unscaled = DisplacedTileScene("unscaled.pbrt", "Option \"displacementedgescale\" 1\n", "0.05");
+    EXPECT_EQ(LoadErrorAfterPath(unscaled, scaled), "no error");
 }
 
 }  // namespace

@@ -18,9 +18,10 @@ inline std::filesystem::path TestFolder(const std::string &name) {
 
 // What LoadScene reports for the scene file after its path (":line:col: error: ..."), or
 // "no error".
-inline std::string LoadErrorAfterPath(const std::string &scene) {
+inline std::string LoadErrorAfterPath(const std::string &scene,
+                                      const RenderOverrides &overrides = {}) {
     try {
-        LoadScene(scene, RenderOverrides{});
+        LoadScene(scene, overrides);
     } catch (const ParseError &e) {
         return std::string(e.what()).substr(scene.size());
     }

@@ -16,6 +16,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -95,6 +96,9 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
                    "one MIS connection with the wrong density and is biased bright for rough "
                    "coats (docs/comparison.md), kept to reproduce pbrt-v4's images (default: "
                    "unbiased)");
+    app.add_option("--displacement-edge-scale", o.displacementEdgeScale,
+                   "multiply the \"edgelength\" of every displaced mesh by this; a scene's Option "
+                   "\"displacementedgescale\" wins over it, as in pbrt-v4 (default: 1)");
     app.add_option("--light-sampler", o.lightSampler,
                    "bvh, power or uniform: how next-event estimation picks a light (default: "
                    "the integrator's \"lightsampler\", bvh unless it says)")
@@ -117,6 +121,8 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
                 throw CLI::ValidationError("--spp", "must be positive");
             o.spp = spp;
         }
+        if (!(o.displacementEdgeScale > 0) || !std::isfinite(o.displacementEdgeScale))
+            throw CLI::ValidationError("--displacement-edge-scale", "must be positive and finite");
         if (resolution.size() == 2)
             o.resolution = Point2i(resolution[0], resolution[1]);
         if (crop.size() == 4)
