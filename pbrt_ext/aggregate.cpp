@@ -458,12 +458,7 @@ struct EmbreeAggregate::Impl {
     // The ray's time as Embree's fraction of the moving instances' interval, clamped to it as
     // pbrt-v4 clamps.
     Float EmbreeTime(Float time) const {
-        if (!motionTimes)
-            return 0;
-        auto [start, end] = *motionTimes;
-        if (!(end > start))
-            return time < start ? 0 : 1;
-        return Clamp((time - start) / (end - start), 0, 1);
+        return motionTimes ? TimeFraction(time, motionTimes->first, motionTimes->second) : 0;
     }
 
     // A hit inside an instance, described in the instance's space at the ray's time, then

@@ -154,10 +154,14 @@ AnimatedTransform::AnimatedTransform(const Transform &start, Float startTime,
         keys = {Decompose(start), Decompose(end)};
 }
 
-Float AnimatedTransform::Fraction(Float time) const {
+Float TimeFraction(Float time, Float startTime, Float endTime) {
     if (!(endTime > startTime))
         return time < startTime ? 0 : 1;
     return Clamp((time - startTime) / (endTime - startTime), 0, 1);
+}
+
+Float AnimatedTransform::Fraction(Float time) const {
+    return TimeFraction(time, startTime, endTime);
 }
 
 Transform AnimatedTransform::Interpolate(Float time) const {
@@ -206,9 +210,7 @@ TransformDecomposition KeyframedTransform::Keyframe(int k) const {
 }
 
 Transform KeyframedTransform::Interpolate(Float time) const {
-    Float f = Clamp((time - StartTime()) / (EndTime() - StartTime()), 0, 1);
-    if (!(EndTime() > StartTime()))
-        f = 0;
+    Float f = TimeFraction(time, StartTime(), EndTime());
     int k = std::min(StepCount() - 1, int(f * StepCount()));
     return steps[size_t(k)].Interpolate(time);
 }

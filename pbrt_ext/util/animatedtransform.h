@@ -44,6 +44,10 @@ Transform Compose(const TransformDecomposition &d);
 // Shortest-arc spherical interpolation between unit quaternions, t in [0, 1].
 Quaternion Slerp(Float t, Quaternion q0, Quaternion q1);
 
+// Where time falls in [startTime, endTime], clamped to [0, 1] as pbrt-v4 clamps (an empty
+// interval: 0 before it, 1 from it on).
+Float TimeFraction(Float time, Float startTime, Float endTime);
+
 class AnimatedTransform {
   public:
     AnimatedTransform() = default;
