@@ -165,6 +165,19 @@ TEST_F(ImageFiles, ExrChromaticitiesGiveTheColorSpace) {
     EXPECT_EQ(image.GetChannels(Point2i(0, 0)).g, 0.5f);
 }
 
+// The images made from one (a texture pyramid's resized, halved and re-encoded levels) stay in
+// its colour space.
+TEST_F(ImageFiles, PyramidLevelsKeepTheColorSpace) {
+    ImageMetadata md;
+    md.colorSpace = &RGBColorSpace::Rec2020();
+    std::string path = Path("rec2020.exr");
+    TestImage(Point2i(3, 5), 1, 4).Write(path, md);
+    std::vector<Image> pyramid = Image::GeneratePyramid(Image::Read(path), WrapMode::Clamp);
+    ASSERT_EQ(pyramid.size(), 4u);  // 4 x 8 up to 1 x 1
+    for (const Image &level : pyramid)
+        EXPECT_EQ(&level.ColorSpace(), &RGBColorSpace::Rec2020()) << level.Resolution().x;
+}
+
 TEST_F(ImageFiles, ExrCropSetsDataAndDisplayWindows) {
     Image crop = TestImage(Point2i(4, 3), 1, 2);
     ImageMetadata md;

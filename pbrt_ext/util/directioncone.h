@@ -35,8 +35,6 @@ inline Float AngleBetween(Vector3f v1, Vector3f v2) {
     return 2 * SafeASin(Length(v2 - v1) / 2);
 }
 
-// The directions from p toward the box b: the cone around its bounding sphere, or every direction
-// when p is inside that sphere.
 // The cosine of the half-angle of the cone the sphere (center, radius) subtends from p; -1, the
 // whole sphere of directions, for a p inside it.
 inline Float SubtendedCosTheta(Point3f center, Float radius, Point3f p) {
@@ -47,6 +45,8 @@ inline Float SubtendedCosTheta(Point3f center, Float radius, Point3f p) {
     return SafeSqrt(1 - sin2ThetaMax);
 }
 
+// The directions from p toward the box b: the cone around its bounding sphere, or every direction
+// when p is inside that sphere.
 inline DirectionCone BoundSubtendedDirections(const Bounds3f &b, Point3f p) {
     Point3f center;
     Float radius;

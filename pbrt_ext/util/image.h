@@ -214,7 +214,8 @@ class Image {
     // Whether the pixels are kept as the file's bytes (Read()).
     bool Is8Bit() const { return !bytes.empty(); }
     // The colour space of the RGB values: an EXR's "chromaticities" where Read() found them
-    // (pbrt-v4's ImageMetadata::GetColorSpace), sRGB otherwise.
+    // (pbrt-v4's ImageMetadata::GetColorSpace), sRGB otherwise. Images made from this one
+    // (resized, halved, re-encoded) keep it.
     const RGBColorSpace &ColorSpace() const;
 
     // Lookups at continuous coordinates st in [0, 1]^2 over the whole image (pixel centers at

@@ -60,6 +60,7 @@ Image Image::FloatResizeUp(Point2i newRes, WrapMode2D wrapMode) const {
         }
     });
     Image result(newRes);
+    result.colorSpace = colorSpace;
     tbb::parallel_for(0, newRes.y, [&](int y) {
         const ResampleWeight &w = yWeights[size_t(y)];
         for (int x = 0; x < newRes.x; ++x) {
@@ -74,6 +75,7 @@ Image Image::FloatResizeUp(Point2i newRes, WrapMode2D wrapMode) const {
 Image Image::HalfResolution() const {
     Point2i next(std::max(1, resolution.x / 2), std::max(1, resolution.y / 2));
     Image half(next);
+    half.colorSpace = colorSpace;
     tbb::parallel_for(0, next.y, [&](int y) {
         // A side of one texel has no second texel to average.
         int y0 = 2 * y, y1 = std::min(2 * y + 1, resolution.y - 1);
@@ -90,6 +92,7 @@ Image Image::HalfResolution() const {
 Image Image::EncodedAs8Bit(ColorEncoding encoding, int channels) const {
     Image image;
     image.resolution = resolution;
+    image.colorSpace = colorSpace;
     image.byteChannels = channels;
     image.SetByteEncoding(encoding);
     size_t n = size_t(resolution.x) * size_t(resolution.y);
@@ -104,6 +107,7 @@ Image Image::AsFloat() const {
     if (!Is8Bit()) return *this;
     Image image;
     image.resolution = resolution;
+    image.colorSpace = colorSpace;
     image.pixels = DecodeBytes();
     return image;
 }

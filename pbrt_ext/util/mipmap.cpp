@@ -15,8 +15,8 @@ std::optional<FilterFunction> ParseFilterFunction(const std::string &name) {
 }
 
 MIPMap::MIPMap(Image image, WrapMode wrapMode, MIPMapFilterOptions options)
-    : colorSpace(&image.ColorSpace()), pyramid(Image::GeneratePyramid(std::move(image), wrapMode)),
-      wrapMode(wrapMode), options(options) {}
+    : pyramid(Image::GeneratePyramid(std::move(image), wrapMode)), wrapMode(wrapMode),
+      options(options) {}
 
 namespace {
 

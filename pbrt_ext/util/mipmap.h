@@ -51,11 +51,11 @@ class MIPMap {
     // The Gaussian-weighted average over the ellipse at level (the top texel above the pyramid).
     RGB EWA(int level, Point2f st, Vector2f dst0, Vector2f dst1) const;
 
-    // The colour space of the source image's RGB (pbrt-v4's GetRGBColorSpace).
-    const RGBColorSpace &ColorSpace() const { return *colorSpace; }
+    // The colour space of the source image's RGB, which every level keeps (pbrt-v4's
+    // GetRGBColorSpace).
+    const RGBColorSpace &ColorSpace() const { return pyramid.front().ColorSpace(); }
 
   private:
-    const RGBColorSpace *colorSpace;  // first: taken from the image before it is moved
     std::vector<Image> pyramid;
     WrapMode wrapMode;
     MIPMapFilterOptions options;
