@@ -113,11 +113,17 @@ void WarnAboutOptions(const SceneDescription &scene) {
 }
 
 // The scene's Option, else the command line's (pbrt-v4 applies the file's over its command
-// line's). The scene description has checked that the value is a finite float.
+// line's). The scene description has checked that the value is a finite float; a scale that is
+// not positive is an error at the Option, as it is on the command line.
 Float DisplacementEdgeScale(const SceneDescription &scene, const RenderOverrides &overrides) {
     auto option = scene.options.find(kDisplacementEdgeScale);
-    return option == scene.options.end() ? overrides.displacementEdgeScale
-                                         : std::stof(option->second.value);
+    if (option == scene.options.end())
+        return overrides.displacementEdgeScale;
+    Float scale = std::stof(option->second.value);
+    if (!(scale > 0))
+        throw ParseError(option->second.loc, "option \"displacementedgescale\" is " +
+                                                 option->second.value + "; expected a positive scale");
+    return scale;
 }
 
 // What turns a shape's names into the builder's indices, and the scale of its displacement's

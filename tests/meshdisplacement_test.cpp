@@ -123,6 +123,9 @@ TEST(MeshDisplacement, EdgeScaleFromTheCommandLineOrTheFileScalesTheEdgeLength) 
     EXPECT_THAT(LoadErrorAfterPath(option), testing::StartsWith(":5:46: error: displacing the mesh"));
     std::string unscaled = DisplacedTileScene("unscaled.pbrt", "Option \"displacementedgescale\" 1\n", "0.05");
     EXPECT_EQ(LoadErrorAfterPath(unscaled, scaled), "no error");
+    std::string negative = DisplacedTileScene("negative.pbrt", "Option \"displacementedgescale\" -2\n", "0.05");
+    EXPECT_EQ(LoadErrorAfterPath(negative),
+              ":2:1: error: option \"displacementedgescale\" is -2; expected a positive scale");
 }
 
 }  // namespace
