@@ -516,8 +516,12 @@ Float BDPTIntegrator::MISWeight(BDPTVertex *lightVertices, BDPTVertex *cameraVer
         if (!light(i).delta && !deltaLightVertex)
             sumRi += ri;
     }
+    // Light paths spread over the whole film, so with a crop window the t = 1 strategy samples
+    // a pixel cropScale times more rarely than the others: its weight is its density over
+    // cropScale against theirs. (pbrt-v4 divides here too, and its weights then sum to more
+    // than 1 on every path that t = 1 can make: bdptmis_test.)
     if (t == 1)
-        sumRi /= cropScale;
+        sumRi *= cropScale;
     return 1 / (1 + sumRi);
 }
 

@@ -47,6 +47,7 @@ class BDPTIntegrator {
     Float MISWeight(BDPTVertex *lightVertices, BDPTVertex *cameraVertices, BDPTVertex *sampled,
                     int s, int t) const;
     friend struct BDPTVertex;  // its densities need the camera, lights and scene
+    friend struct BDPTTestAccess;  // tests/bdptmis_test.cpp checks the weights path by path
 
     int GenerateCameraSubpath(const RayDifferential &ray, SampledWavelengths &lambda, Sampler &sampler,
                               RayCounts &rays, BDPTVertex *path) const;
