@@ -7,6 +7,8 @@
 // built in this file from the BT.709 primaries and the white of the tabulated D65.
 #include "pbrt_ext/util/rgbtospectrumtable.h"
 
+#include "pbrt_ext/spectrum.h"
+
 #include "pbrt_ext/cmd/rgb2spec_opt.h"
 #include "pbrt_ext/util/ciedata.h"
 #include "pbrt_ext/util/color.h"
@@ -292,6 +294,28 @@ TEST(RGBToSpectrumTable, OutOfRangeIsClamped) {
         for (Float lambda = 360; lambda <= 830; lambda += 10) {
             ASSERT_FALSE(std::isnan(a(lambda))) << in.ToString();
             ASSERT_EQ(a(lambda), b(lambda)) << in.ToString();
+        }
+    }
+}
+
+// SampleSigmoid evaluates the four wavelengths together; each value must be the sigmoid's own,
+// bit for bit, also where the polynomial is too large for the formula (1e18 and beyond: 1 or 0)
+// and where it is NaN.
+TEST(RGBSigmoidPolynomial, SampledTogetherAsOneByOne) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<Float> coefficient(-3, 3), u(0, 1);
+    const RGBSigmoidPolynomial extremes[] = {{1e12f, 0, 0}, {-1e12f, 0, 0}, {0, 0, 2e18f},
+                                              {0, 0, -1e30f}, {0, 0, NAN}, {0, 0, 0}};
+    for (int i = 0; i < 2000; ++i) {
+        RGBSigmoidPolynomial rsp = i < 6 ? extremes[i]
+                                         : RGBSigmoidPolynomial(coefficient(rng) * 1e-4f,
+                                                                coefficient(rng) * 1e-2f, coefficient(rng));
+        SampledWavelengths lambda = SampledWavelengths::SampleUniform(u(rng));
+        SampledSpectrum together = SampleSigmoid(rsp, lambda);
+        for (int c = 0; c < NSpectrumSamples; ++c) {
+            Float alone = rsp(lambda[c]);
+            ASSERT_TRUE(together[c] == alone || (std::isnan(together[c]) && std::isnan(alone)))
+                << rsp.ToString() << " at " << lambda[c] << ": " << together[c] << " vs " << alone;
         }
     }
 }
