@@ -171,7 +171,7 @@ BDPTIntegrator::BDPTIntegrator(Scene &scene, PathIntegratorOptions options)
             auto strategy = std::make_unique<RGBFilm>(res, film.PixelBounds(), Filter(BoxFilter()),
                                                       (folder / name).string(), Infinity,
                                                       film.Sensor(), &film.ColorSpace());
-            strategy->EnableSplats();
+            strategy->EnableSplats(false);  // diagnostics: one set of sums each, not per thread
             strategyFilms[BufferIndex(s, t)] = std::move(strategy);
         }
 }

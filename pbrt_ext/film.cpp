@@ -1,5 +1,7 @@
 #include "pbrt_ext/film.h"
 
+#include <tbb/global_control.h>
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -44,6 +46,12 @@ RGBFilm::RGBFilm(Point2i fullResolution, Bounds2i pixelBounds, Filter filter, st
     pixels.resize(size_t(pixelBounds.Area()));
 }
 
+void RGBFilm::EnableSplats(bool perThreadSums) {
+    size_t threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+    threadSplatsEnabled = perThreadSums && 3 * sizeof(double) * pixels.size() * threads <= kThreadSplatBytes;
+    if (!threadSplatsEnabled) splats.resize(3 * pixels.size());
+}
+
 void RGBFilm::AddSplat(Point2f pFilm, const SampledSpectrum &L, const SampledWavelengths &lambda) {
     RGB rgb = ClampedSensorRGB(L, lambda);
     // The pixels whose centers lie within the filter's radius of pFilm.
@@ -68,14 +76,25 @@ void RGBFilm::AddSplat(Point2f pFilm, const SampledSpectrum &L, const SampledWav
         wx[i] = filter.Evaluate1D(0, pFilm.x - (splatBounds.pMin.x + i) - 0.5f);
     for (int j = 0; j < extent.y; ++j)
         wy[j] = filter.Evaluate1D(1, pFilm.y - (splatBounds.pMin.y + j) - 0.5f) * invFilterIntegral;
+    double *own = nullptr;
+    if (threadSplatsEnabled) {
+        std::vector<double> &sums = threadSplats.local();
+        if (sums.empty()) sums.resize(3 * pixels.size());
+        own = sums.data();
+    }
     for (int j = 0; j < extent.y; ++j)
         for (int i = 0; i < extent.x; ++i) {
             Float wt = wx[i] * wy[j];
             if (wt == 0)
                 continue;
             size_t index = PixelIndex(Point2i(splatBounds.pMin.x + i, splatBounds.pMin.y + j));
-            for (int c = 0; c < 3; ++c)
-                splats[3 * index + c].Add(double(wt) * double(rgb[c]));
+            for (int c = 0; c < 3; ++c) {
+                double value = double(wt) * double(rgb[c]);
+                if (own)
+                    own[3 * index + c] += value;
+                else
+                    splats[3 * index + c].Add(value);
+            }
             if (buckets) buckets->AddSplat(index, L, lambda, wt, maxComponentValue);
         }
 }

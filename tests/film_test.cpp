@@ -140,11 +140,14 @@ TEST(Film, DisjointTilesNeedNoLocks) {
 }
 
 // Splats from many threads into one pixel all arrive: the sum is exact (each adds 1, which
-// doubles sum without rounding).
-TEST(Film, ConcurrentSplatsToOnePixelLoseNothing) {
+// doubles sum without rounding). With sums per thread (the film's choice where they fit) and with
+// one set of atomic sums.
+class ConcurrentSplats : public testing::TestWithParam<bool> {};
+
+TEST_P(ConcurrentSplats, ToOnePixelLoseNothing) {
     Point2i res(4, 4);
     RGBFilm film(res, Bounds2i(Point2i(0, 0), res), BoxFilter(), "unused.exr");
-    film.EnableSplats();
+    film.EnableSplats(/*perThreadSums=*/GetParam());
     const SampledSpectrum L(1.f);
     const RGB one = film.Sensor().ToSensorRGB(L, kLambda);
     const int threads = 8, perThread = 100000;
@@ -165,6 +168,11 @@ TEST(Film, ConcurrentSplatsToOnePixelLoseNothing) {
     EXPECT_GT(reference.GetPixelRGB(Point2i(2, 1)).Average(), 0);
     EXPECT_GT(one.Average(), 0);
 }
+
+INSTANTIATE_TEST_SUITE_P(Film, ConcurrentSplats, testing::Values(true, false),
+                         [](const testing::TestParamInfo<bool> &param) {
+                             return param.param ? "PerThreadSums" : "AtomicSums";
+                         });
 
 // A splat spreads over the pixels the filter covers by the filter's normalized weights: its
 // total over the film is what a camera sample of the same radiance adds to its pixel.
