@@ -94,7 +94,12 @@ class VisiblePointGrid {
         }
         return inside;
     }
-    size_t Bucket(Point3i cell) const { return Hash(cell.x, cell.y, cell.z) % hashSize; }
+    // The hash scaled to [0, hashSize) by a multiplication (Lemire's range reduction) instead of
+    // a 64-bit division: the grid is rebuilt every iteration, on one thread, eight cells or more
+    // per visible point.
+    size_t Bucket(Point3i cell) const {
+        return size_t((Hash(cell.x, cell.y, cell.z) >> 32) * hashSize >> 32);  // hashSize < 2^32
+    }
     template <typename F>
     void ForEachCell(const std::vector<SPPMPixel> &pixels, F f) const {
         for (size_t i = 0; i < pixels.size(); ++i) {
