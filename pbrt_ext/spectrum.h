@@ -38,21 +38,6 @@ SampledSpectrum SampleEach(const S &s, const SampledWavelengths &lambda) {
     return v;
 }
 
-// rsp at each wavelength, the same values as rsp(lambda[i]), computed without branches so that
-// compilers evaluate the four together (one sqrtps and one divps with SSE): the sigmoid is taken
-// for every RGB texture, light and grid-medium lookup.
-inline SampledSpectrum SampleSigmoid(const RGBSigmoidPolynomial &rsp, const SampledWavelengths &lambda) {
-    Float x[NSpectrumSamples], sigmoid[NSpectrumSamples];
-    for (int i = 0; i < NSpectrumSamples; ++i)
-        x[i] = (rsp.c0 * lambda[i] + rsp.c1) * lambda[i] + rsp.c2;
-    for (int i = 0; i < NSpectrumSamples; ++i)
-        sigmoid[i] = Float(0.5) + x[i] / (2 * std::sqrt(1 + x[i] * x[i]));
-    SampledSpectrum v;
-    for (int i = 0; i < NSpectrumSamples; ++i)
-        v[i] = std::abs(x[i]) < Float(1e18) ? sigmoid[i] : (x[i] > 0 ? Float(1) : Float(0));
-    return v;
-}
-
 struct ConstantSpectrum {
     Float c;
     Float operator()(Float) const { return c; }
@@ -100,7 +85,7 @@ struct BlackbodySpectrum {
 struct RGBAlbedoSpectrum {
     RGBAlbedoSpectrum(const RGBColorSpace &cs, RGB rgb);
     Float operator()(Float lambda) const { return rsp(lambda); }
-    SampledSpectrum Sample(const SampledWavelengths &lambda) const { return SampleSigmoid(rsp, lambda); }
+    SampledSpectrum Sample(const SampledWavelengths &lambda) const { return rsp.Sample(lambda); }
     Float MaxValue() const { return rsp.MaxValue(); }
 
     RGBSigmoidPolynomial rsp;
@@ -111,7 +96,7 @@ struct RGBAlbedoSpectrum {
 struct RGBUnboundedSpectrum {
     RGBUnboundedSpectrum(const RGBColorSpace &cs, RGB rgb);
     Float operator()(Float lambda) const { return scale * rsp(lambda); }
-    SampledSpectrum Sample(const SampledWavelengths &lambda) const { return scale * SampleSigmoid(rsp, lambda); }
+    SampledSpectrum Sample(const SampledWavelengths &lambda) const { return scale * rsp.Sample(lambda); }
     Float MaxValue() const { return scale * rsp.MaxValue(); }
 
     Float scale = 1;
@@ -124,7 +109,7 @@ struct RGBIlluminantSpectrum {
     RGBIlluminantSpectrum(const RGBColorSpace &cs, RGB rgb);
     Float operator()(Float lambda) const { return scale * rsp(lambda) * (*illuminant)(lambda); }
     SampledSpectrum Sample(const SampledWavelengths &lambda) const {
-        return scale * SampleSigmoid(rsp, lambda) * illuminant->Sample(lambda);
+        return scale * rsp.Sample(lambda) * illuminant->Sample(lambda);
     }
     Float MaxValue() const { return scale * rsp.MaxValue() * illuminant->MaxValue(); }
 

@@ -7,8 +7,6 @@
 // built in this file from the BT.709 primaries and the white of the tabulated D65.
 #include "pbrt_ext/util/rgbtospectrumtable.h"
 
-#include "pbrt_ext/spectrum.h"
-
 #include "pbrt_ext/cmd/rgb2spec_opt.h"
 #include "pbrt_ext/util/ciedata.h"
 #include "pbrt_ext/util/color.h"
@@ -298,7 +296,7 @@ TEST(RGBToSpectrumTable, OutOfRangeIsClamped) {
     }
 }
 
-// SampleSigmoid evaluates the four wavelengths together; each value must be the sigmoid's own,
+// Sample evaluates the four wavelengths together; each value must be the sigmoid's own,
 // bit for bit, also where the polynomial is too large for the formula (1e18 and beyond: 1 or 0)
 // and where it is NaN.
 TEST(RGBSigmoidPolynomial, SampledTogetherAsOneByOne) {
@@ -311,7 +309,7 @@ TEST(RGBSigmoidPolynomial, SampledTogetherAsOneByOne) {
                                          : RGBSigmoidPolynomial(coefficient(rng) * 1e-4f,
                                                                 coefficient(rng) * 1e-2f, coefficient(rng));
         SampledWavelengths lambda = SampledWavelengths::SampleUniform(u(rng));
-        SampledSpectrum together = SampleSigmoid(rsp, lambda);
+        SampledSpectrum together = rsp.Sample(lambda);
         for (int c = 0; c < NSpectrumSamples; ++c) {
             Float alone = rsp(lambda[c]);
             ASSERT_TRUE(together[c] == alone || (std::isnan(together[c]) && std::isnan(alone)))

@@ -11,6 +11,7 @@
 
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/util/math.h"
+#include "pbrt_ext/util/spectrum.h"
 
 #include <algorithm>
 #include <cassert>
@@ -149,9 +150,18 @@ class RGBSigmoidPolynomial {
     RGBSigmoidPolynomial() = default;
     PBRT_CPU_GPU RGBSigmoidPolynomial(Float c0, Float c1, Float c2) : c0(c0), c1(c1), c2(c2) {}
 
-    // Horner's rule without std::fma, which is a library call on x86-64 without -mfma; the
-    // sigmoid is evaluated at every texture lookup, four wavelengths at a time.
-    PBRT_CPU_GPU Float operator()(Float lambda) const { return s((c0 * lambda + c1) * lambda + c2); }
+    PBRT_CPU_GPU Float operator()(Float lambda) const { return s(Polynomial(lambda)); }
+    // The same values at each sampled wavelength, in three passes without branches, so that
+    // compilers evaluate the wavelengths together (one sqrtps and one divps for four): every RGB
+    // texture, light and grid-medium lookup samples a sigmoid.
+    PBRT_CPU_GPU SampledSpectrum Sample(const SampledWavelengths &lambda) const {
+        Float x[NSpectrumSamples], sigmoid[NSpectrumSamples];
+        for (int i = 0; i < NSpectrumSamples; ++i) x[i] = Polynomial(lambda[i]);
+        for (int i = 0; i < NSpectrumSamples; ++i) sigmoid[i] = Sigmoid(x[i]);
+        SampledSpectrum v;
+        for (int i = 0; i < NSpectrumSamples; ++i) v[i] = Limited(x[i], sigmoid[i]);
+        return v;
+    }
 
     // An upper bound of the spectrum over 360-830 nm: the larger end, or the vertex of the
     // polynomial where it lies inside (s is increasing, so the polynomial's maximum is the
@@ -177,13 +187,16 @@ class RGBSigmoidPolynomial {
     }
 
   private:
+    // Horner's rule without std::fma, which is a library call on x86-64 without -mfma.
+    PBRT_CPU_GPU Float Polynomial(Float lambda) const { return (c0 * lambda + c1) * lambda + c2; }
+    PBRT_CPU_GPU static Float Sigmoid(Float x) { return Float(0.5) + x / (2 * std::sqrt(1 + Sqr(x))); }
     // Beyond |x| = 1e18, 1 + x^2 overflows and x / sqrt(...) would be 0 (a spectrum of 1/2),
-    // so the limit is returned instead; NaN (0 * inf in the polynomial) is treated as -inf, so
+    // so the limit replaces the sigmoid; NaN (0 * inf in the polynomial) is treated as -inf, so
     // the spectrum is never NaN.
-    PBRT_CPU_GPU static Float s(Float x) {
-        if (!(std::abs(x) < Float(1e18))) return x > 0 ? 1 : 0;
-        return Float(0.5) + x / (2 * std::sqrt(1 + Sqr(x)));
+    PBRT_CPU_GPU static Float Limited(Float x, Float sigmoid) {
+        return std::abs(x) < Float(1e18) ? sigmoid : (x > 0 ? Float(1) : Float(0));
     }
+    PBRT_CPU_GPU static Float s(Float x) { return Limited(x, Sigmoid(x)); }
 };
 
 }  // namespace pbrt
