@@ -174,11 +174,18 @@ class HomogeneousMedium {
     }
     HomogeneousMajorantIterator SampleRay(const Ray &, Float tMax,
                                           const SampledWavelengths &lambda) const {
-        return HomogeneousMajorantIterator(
-            0, tMax, sigmaScale * (sigma_a.Sample(lambda) + sigma_s.Sample(lambda)));
+        return HomogeneousMajorantIterator(0, tMax, SigmaT(lambda));
+    }
+    // Beer-Lambert over a distance (infinite where sigma_t is 0 gives 1).
+    SampledSpectrum Transmittance(Float distance, const SampledWavelengths &lambda) const {
+        return Exp(-SigmaT(lambda) * std::min(distance, std::numeric_limits<Float>::max()));
     }
 
   private:
+    SampledSpectrum SigmaT(const SampledWavelengths &lambda) const {
+        return sigmaScale * (sigma_a.Sample(lambda) + sigma_s.Sample(lambda));
+    }
+
     Spectrum sigma_a, sigma_s, Le;
     Float sigmaScale, LeScale;
     HGPhaseFunction phase;
@@ -332,6 +339,18 @@ class Medium {
     }
     template <typename T>
     const T *Get() const { return std::get_if<T>(&medium); }
+
+    // The transmittance along ray up to tMax (in units of ray.d) where it has a closed form:
+    // in a homogeneous medium the majorant is sigma_t, so ratio tracking's estimate is 0 at
+    // its first collision and T_maj / T_maj[0] with probability T_maj[0] otherwise; shadow
+    // rays take that expectation instead of drawing it. nullopt for the other media.
+    std::optional<SampledSpectrum> ClosedFormTransmittance(const Ray &ray, Float tMax,
+                                                           const SampledWavelengths &lambda) const {
+        const HomogeneousMedium *homogeneous = Get<HomogeneousMedium>();
+        if (!homogeneous)
+            return std::nullopt;
+        return homogeneous->Transmittance(tMax * Length(ray.d), lambda);
+    }
 
     // Delta tracking along ray up to tMax (in units of ray.d): draws collision distances
     // against the majorant, starting from u and continuing with rng, and calls

@@ -16,7 +16,13 @@ SampledSpectrum Transmittance(const Scene &scene, Ray ray, Point3f target,
     SampledSpectrum T_ray(1.f), inv_w(1.f);
     RNG rng(Hash(ray.o), Hash(target));
     bool reached = WalkToTarget(scene, ray, target, rays, [&](const Ray &r, Float tMax) {
-        SampledSpectrum T_majEnd = scene.media[r.medium].SampleT_maj(
+        const Medium &medium = scene.media[r.medium];
+        // Exact where it can be: no distance is drawn, so no wavelength's density to weigh.
+        if (std::optional<SampledSpectrum> T = medium.ClosedFormTransmittance(r, tMax, lambda)) {
+            T_ray *= *T;
+            return bool(T_ray);
+        }
+        SampledSpectrum T_majEnd = medium.SampleT_maj(
             r, tMax, rng.Uniform<Float>(), rng, lambda,
             [&](Point3f, const MediumProperties &mp, SampledSpectrum sigma_maj, SampledSpectrum T_maj) {
                 RatioTrackingStep step = RatioTracking(mp, sigma_maj, T_maj);

@@ -1,7 +1,8 @@
 // Transmittance between two points of a scene (pbrt-v4's Integrator::Tr), for the connections of
 // paths traced from both ends (bdpt, lightpath): zero where a surface blocks the segment; through
-// media and the interfaces between them, a ratio-tracking estimate, with the hero wavelength's
-// collisions weighted for all wavelengths by their average probability (spectral MIS).
+// media and the interfaces between them, Beer-Lambert in homogeneous media and a ratio-tracking
+// estimate in the others, with the hero wavelength's collisions weighted for all wavelengths by
+// their average probability (spectral MIS).
 #pragma once
 
 #include "pbrt_ext/integrators.h"

@@ -293,7 +293,19 @@ SampledSpectrum VolPathIntegrator::Transmittance(Ray ray, Point3f pLight,
     SampledSpectrum T_ray(1.f);
     RNG rng(Hash(ray.o), Hash(ray.d));
     bool reached = WalkToTarget(scene, ray, pLight, rays, [&](const Ray &r, Float tMax) {
-        SampledSpectrum T_majEnd = scene.media[r.medium].SampleT_maj(
+        const Medium &medium = scene.media[r.medium];
+        // Ratio tracking's expectation where it has one: it would survive with probability
+        // T[0] and then weigh by T / T[0], which the MIS densities keep, so that they stay
+        // those of the unidirectional paths through the same stretch.
+        if (std::optional<SampledSpectrum> T = medium.ClosedFormTransmittance(r, tMax, lambda)) {
+            if (!((*T)[0] > 0))
+                return false;
+            T_ray *= *T;
+            *r_l *= *T / (*T)[0];
+            *r_u *= *T / (*T)[0];
+            return bool(T_ray);
+        }
+        SampledSpectrum T_majEnd = medium.SampleT_maj(
             r, tMax, rng.Uniform<Float>(), rng, lambda,
             [&](Point3f, const MediumProperties &mp, SampledSpectrum sigma_maj, SampledSpectrum T_maj) {
                 // Ratio tracking: every collision multiplies by the null fraction.

@@ -68,7 +68,8 @@ class VolPathIntegrator {
                              const SampledWavelengths &lambda, Sampler &sampler,
                              SampledSpectrum beta, SampledSpectrum r_p, RayCounts &rays) const;
     // Transmittance along ray to pLight through media and interfaces (0 if a surface blocks
-    // it), updating the light-path probabilities r_l and r_u by ratio tracking.
+    // it), updating the light-path probabilities r_l and r_u by ratio tracking (by its
+    // expectation in homogeneous media).
     SampledSpectrum Transmittance(Ray ray, Point3f pLight, const SampledWavelengths &lambda,
                                   SampledSpectrum *r_l, SampledSpectrum *r_u,
                                   RayCounts &rays) const;

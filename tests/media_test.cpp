@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 namespace pbrt {
@@ -159,6 +160,29 @@ TEST(Transmittance, BeerLambertThroughAGridByBothEstimators) {
         // Ratio tracking has no binary outcome: it is the lower-variance estimator here.
         EXPECT_LT(ratio.stdError, delta.stdError);
     }
+}
+
+// Shadow rays take a homogeneous medium's transmittance in closed form: Beer-Lambert at every
+// wavelength, which is what ratio tracking averages to there (its estimate is 0 or T / T[0]).
+TEST(Transmittance, ClosedFormIsRatioTrackingsMeanInAHomogeneousMedium) {
+    Medium m = ChromaticHomogeneous();
+    Ray ray(Point3f(0.1f, 0.2f, -0.3f), Vector3f(0.6f, -0.3f, 0.5f));
+    const Float tMax = 1.7f;
+    SampledWavelengths lambda = FixedWavelengths();
+    std::optional<SampledSpectrum> T = m.ClosedFormTransmittance(ray, tMax, lambda);
+    ASSERT_TRUE(T.has_value());
+    RNG rng(21);
+    std::vector<SampledSpectrum> estimates(kTrials);
+    for (SampledSpectrum &e : estimates)
+        e = RatioTracking(m, ray, tMax, rng);
+    for (int c = 0; c < NSpectrumSamples; ++c) {
+        double expected = std::exp(-OpticalDepth(m, ray, tMax, c));
+        EXPECT_NEAR((*T)[c], expected, 1e-5 * expected) << "wavelength " << lambda[c];
+        Estimate ratio = Average(kTrials, [&](int i) { return estimates[size_t(i)][c]; });
+        EXPECT_NEAR(ratio.mean, expected, kSigmas * ratio.stdError) << "wavelength " << lambda[c];
+    }
+    // Only a homogeneous medium has one: a grid's depends on the densities along the ray.
+    EXPECT_FALSE(Medium(RandomGrid(3)).ClosedFormTransmittance(ray, tMax, lambda).has_value());
 }
 
 // Counts the points where sigma_t exceeds sigmaPerUnit times the majorant grid's value in the

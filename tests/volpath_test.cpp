@@ -7,12 +7,14 @@
 
 #include "pbrt_ext/integrators.h"
 #include "pbrt_ext/scene.h"
+#include "pbrt_ext/transmittance.h"
 #include "scenes.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
+#include <vector>
 
 namespace pbrt {
 namespace {
@@ -195,6 +197,85 @@ TEST(VolPath, SpectralMISKeepsTheMeanAndLowersChromaticNoise) {
     EXPECT_GT(std::abs(with.tilt.Mean()), 5 * with.tilt.StdError());
     EXPECT_LT(with.channelVariance, 0.8 * without.channelVariance)
         << with.channelVariance << " vs " << without.channelVariance;
+}
+
+// The chromatic medium of the test above, homogeneous or as a grid of constant density over a
+// box around the unit sphere: the same medium, but only the homogeneous one has a closed-form
+// transmittance; the grid's is tracked.
+Medium ChromaticMedium(bool asGrid) {
+    Spectrum sigma_a(0.2f), sigma_s = Spectrum::PiecewiseLinear({360.f, 830.f}, {0.6f, 3.f});
+    if (!asGrid)
+        return HomogeneousMedium(sigma_a, sigma_s, 1, Spectrum(0.f), 0, 0.2f);
+    Bounds3f box(Point3f(-1.5f, -1.5f, -1.5f), Point3f(1.5f, 1.5f, 1.5f));
+    return GridMedium(box, Transform(), sigma_a, sigma_s, 1, 0.2f,
+                      SampledGrid<Float>(std::vector<Float>(8, 1.f), 2, 2, 2), GridEmission{});
+}
+
+// Shadow rays take a homogeneous medium's transmittance in closed form, ratio tracking's
+// expectation, with the MIS densities tracking would give them (so that next-event estimation
+// and paths that reach the sky weigh each other as before). Against the same medium tracked,
+// the mean and the colour agree, with less variance.
+TEST(VolPath, ClosedFormShadowRaysKeepTheMeanOfRatioTracking) {
+    const int n = 100000;
+    auto render = [&](bool asGrid, int seed) {
+        SceneBuilder builder = MakeBuilder();
+        builder.SetMediumInterface(MediumInterface(builder.AddMedium(ChromaticMedium(asGrid)), -1));
+        builder.AddSphere(UnitSphereAt(Point3f(0, 0, 0)), -1);
+        builder.AddLight(DistantLight(RotateY(30), Spectrum(1.f), 1));
+        builder.AddLight(UniformInfiniteLight(Spectrum(0.3f), 1));
+        builder.SetIntegrator(VolPath(20));
+        std::unique_ptr<Scene> scene = builder.Build();
+        VolPathIntegrator integrator(*scene, scene->integratorOptions);
+        return EstimateLi(integrator, Ray(Point3f(0.3f, 0, 4), Vector3f(0, 0, -1)), n, seed, true);
+    };
+    Estimate closed = render(false, 1), tracked = render(true, 2);
+    EXPECT_NEAR(closed.average.Mean(), tracked.average.Mean(),
+                kSigmas * std::hypot(closed.average.StdError(), tracked.average.StdError()));
+    EXPECT_NEAR(closed.tilt.Mean(), tracked.tilt.Mean(),
+                kSigmas * std::hypot(closed.tilt.StdError(), tracked.tilt.StdError()));
+    EXPECT_LT(closed.channelVariance, tracked.channelVariance)
+        << closed.channelVariance << " vs " << tracked.channelVariance;
+}
+
+// The transmittance between two points of bdpt's connections: through a homogeneous slab,
+// Beer-Lambert at every wavelength, exactly (no distance is drawn); through the same medium
+// as a grid, a tracked estimate with that mean once the hero wavelength is random (spectral
+// MIS is unbiased over the choice of hero, not for a fixed one).
+TEST(Transmittance, BetweenTwoPointsAcrossAHomogeneousSlabIsBeerLambert) {
+    const Float d = 0.8f;
+    auto makeSlab = [&](bool asGrid) {
+        return MakeSlab(ChromaticMedium(asGrid), d, [](SceneBuilder &) {}, VolPath(5));
+    };
+    Slab homogeneous = makeSlab(false), grid = makeSlab(true);
+    Point3f from(0.2f, 0.1f, 1.3f), to(-0.3f, 0.4f, -0.6f);
+    Float pathInSlab = d * Length(to - from) / (from.z - to.z);
+    RayCounts rays;
+    auto closedForm = [&](Point3f p, Point3f q, const SampledWavelengths &lambda) {
+        return Transmittance(*homogeneous.scene, Ray(p, q - p), q, lambda, rays);
+    };
+    SampledWavelengths lambda = SampledWavelengths::SampleUniform(0.3f);
+    SampledSpectrum T = closedForm(from, to, lambda);
+    MediumProperties mp = ChromaticMedium(false).SamplePoint(from, lambda);
+    for (int c = 0; c < NSpectrumSamples; ++c) {
+        double expected = std::exp(-(mp.sigma_a[c] + mp.sigma_s[c]) * pathInSlab);
+        // Within 1e-3: the rays leave the slab's faces (rectangles 2000 wide) from points
+        // offset by their float error bounds, about 1e-4 of the path here.
+        EXPECT_NEAR(T[c], expected, 1e-3 * expected) << "wavelength " << lambda[c];
+        EXPECT_EQ(closedForm(from, to, lambda)[c], T[c]) << "nothing is drawn";
+    }
+    // The tracked estimate less the closed form, over random wavelengths and endpoints (ratio
+    // tracking seeds its RNG from the endpoints).
+    RNG rng(4);
+    Moments difference;
+    for (int i = 0; i < 200000; ++i) {
+        SampledWavelengths random = SampledWavelengths::SampleUniform(rng.Uniform<Float>());
+        Vector3f jitter(0.01f * rng.Uniform<Float>(), 0.01f * rng.Uniform<Float>(), 0);
+        SampledSpectrum tracked =
+            Transmittance(*grid.scene, Ray(from + jitter, to - from), to + jitter, random, rays);
+        difference.Add((tracked - closedForm(from + jitter, to + jitter, random)).Average());
+    }
+    EXPECT_NEAR(difference.Mean(), 0, kSigmas * difference.StdError());
+    EXPECT_GT(difference.StdError(), 0) << "the grid must be tracked";
 }
 
 // pbrt-v4's path tracer crosses an interface without rendering its medium; shadow rays stop at
