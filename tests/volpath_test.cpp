@@ -167,41 +167,9 @@ TEST(VolPath, WhiteFurnaceReturnsTheEnvironment) {
     }
 }
 
-// A chromatic medium: sigma_s rising fivefold over the visible range, lit by a distant light
-// and the environment. With spectral MIS and without it (the hero wavelength's probabilities
-// alone) the estimates agree, in brightness and in colour (the spectrum's tilt), and spectral
-// MIS has less variance per wavelength.
-TEST(VolPath, SpectralMISKeepsTheMeanAndLowersChromaticNoise) {
-    const int n = 100000;
-    auto render = [&](bool spectralMIS, int seed) {
-        SceneBuilder builder = MakeBuilder();
-        Spectrum sigma_s = Spectrum::PiecewiseLinear({360.f, 830.f}, {0.6f, 3.f});
-        int m = builder.AddMedium(HomogeneousMedium(Spectrum(0.2f), sigma_s, 1, Spectrum(0.f), 0, 0.2f));
-        builder.SetMediumInterface(MediumInterface(m, -1));
-        builder.AddSphere(UnitSphereAt(Point3f(0, 0, 0)), -1);
-        builder.AddLight(DistantLight(RotateY(30), Spectrum(1.f), 1));
-        builder.AddLight(UniformInfiniteLight(Spectrum(0.3f), 1));
-        PathIntegratorOptions options = VolPath(20);
-        options.spectralMIS = spectralMIS;
-        builder.SetIntegrator(options);
-        std::unique_ptr<Scene> scene = builder.Build();
-        VolPathIntegrator integrator(*scene, scene->integratorOptions);
-        return EstimateLi(integrator, Ray(Point3f(0.3f, 0, 4), Vector3f(0, 0, -1)), n, seed, true);
-    };
-    Estimate with = render(true, 1), without = render(false, 2);
-    EXPECT_NEAR(with.average.Mean(), without.average.Mean(),
-                kSigmas * std::hypot(with.average.StdError(), without.average.StdError()));
-    EXPECT_NEAR(with.tilt.Mean(), without.tilt.Mean(),
-                kSigmas * std::hypot(with.tilt.StdError(), without.tilt.StdError()));
-    // The medium must be chromatic for the test to mean anything.
-    EXPECT_GT(std::abs(with.tilt.Mean()), 5 * with.tilt.StdError());
-    EXPECT_LT(with.channelVariance, 0.8 * without.channelVariance)
-        << with.channelVariance << " vs " << without.channelVariance;
-}
-
-// The chromatic medium of the test above, homogeneous or as a grid of constant density over a
-// box around the unit sphere: the same medium, but only the homogeneous one has a closed-form
-// transmittance; the grid's is tracked.
+// A chromatic medium: sigma_s rising fivefold over the visible range. Homogeneous, or as a
+// grid of constant density over a box around the unit sphere: the same medium, but only the
+// homogeneous one has a closed-form transmittance; the grid's is tracked.
 Medium ChromaticMedium(bool asGrid) {
     Spectrum sigma_a(0.2f), sigma_s = Spectrum::PiecewiseLinear({360.f, 830.f}, {0.6f, 3.f});
     if (!asGrid)
@@ -211,28 +179,50 @@ Medium ChromaticMedium(bool asGrid) {
                       SampledGrid<Float>(std::vector<Float>(8, 1.f), 2, 2, 2), GridEmission{});
 }
 
+// n estimates, at random wavelengths, of the chromatic medium in the unit sphere lit by a
+// distant light and the environment.
+Estimate EstimateChromaticSphere(bool asGrid, bool spectralMIS, int seed) {
+    SceneBuilder builder = MakeBuilder();
+    builder.SetMediumInterface(MediumInterface(builder.AddMedium(ChromaticMedium(asGrid)), -1));
+    builder.AddSphere(UnitSphereAt(Point3f(0, 0, 0)), -1);
+    builder.AddLight(DistantLight(RotateY(30), Spectrum(1.f), 1));
+    builder.AddLight(UniformInfiniteLight(Spectrum(0.3f), 1));
+    PathIntegratorOptions options = VolPath(20);
+    options.spectralMIS = spectralMIS;
+    builder.SetIntegrator(options);
+    std::unique_ptr<Scene> scene = builder.Build();
+    VolPathIntegrator integrator(*scene, scene->integratorOptions);
+    return EstimateLi(integrator, Ray(Point3f(0.3f, 0, 4), Vector3f(0, 0, -1)), 100000, seed, true);
+}
+
+// Two estimates agree in brightness and in colour (the spectrum's tilt).
+void ExpectSameBrightnessAndColour(const Estimate &a, const Estimate &b) {
+    EXPECT_NEAR(a.average.Mean(), b.average.Mean(),
+                kSigmas * std::hypot(a.average.StdError(), b.average.StdError()));
+    EXPECT_NEAR(a.tilt.Mean(), b.tilt.Mean(),
+                kSigmas * std::hypot(a.tilt.StdError(), b.tilt.StdError()));
+}
+
+// With spectral MIS and without it (the hero wavelength's probabilities alone) the estimates
+// agree, and spectral MIS has less variance per wavelength.
+TEST(VolPath, SpectralMISKeepsTheMeanAndLowersChromaticNoise) {
+    Estimate with = EstimateChromaticSphere(false, true, 1);
+    Estimate without = EstimateChromaticSphere(false, false, 2);
+    ExpectSameBrightnessAndColour(with, without);
+    // The medium must be chromatic for the test to mean anything.
+    EXPECT_GT(std::abs(with.tilt.Mean()), 5 * with.tilt.StdError());
+    EXPECT_LT(with.channelVariance, 0.8 * without.channelVariance)
+        << with.channelVariance << " vs " << without.channelVariance;
+}
+
 // Shadow rays take a homogeneous medium's transmittance in closed form, ratio tracking's
 // expectation, with the MIS densities tracking would give them (so that next-event estimation
 // and paths that reach the sky weigh each other as before). Against the same medium tracked,
-// the mean and the colour agree, with less variance.
+// the estimates agree, with less variance.
 TEST(VolPath, ClosedFormShadowRaysKeepTheMeanOfRatioTracking) {
-    const int n = 100000;
-    auto render = [&](bool asGrid, int seed) {
-        SceneBuilder builder = MakeBuilder();
-        builder.SetMediumInterface(MediumInterface(builder.AddMedium(ChromaticMedium(asGrid)), -1));
-        builder.AddSphere(UnitSphereAt(Point3f(0, 0, 0)), -1);
-        builder.AddLight(DistantLight(RotateY(30), Spectrum(1.f), 1));
-        builder.AddLight(UniformInfiniteLight(Spectrum(0.3f), 1));
-        builder.SetIntegrator(VolPath(20));
-        std::unique_ptr<Scene> scene = builder.Build();
-        VolPathIntegrator integrator(*scene, scene->integratorOptions);
-        return EstimateLi(integrator, Ray(Point3f(0.3f, 0, 4), Vector3f(0, 0, -1)), n, seed, true);
-    };
-    Estimate closed = render(false, 1), tracked = render(true, 2);
-    EXPECT_NEAR(closed.average.Mean(), tracked.average.Mean(),
-                kSigmas * std::hypot(closed.average.StdError(), tracked.average.StdError()));
-    EXPECT_NEAR(closed.tilt.Mean(), tracked.tilt.Mean(),
-                kSigmas * std::hypot(closed.tilt.StdError(), tracked.tilt.StdError()));
+    Estimate closed = EstimateChromaticSphere(false, true, 1);
+    Estimate tracked = EstimateChromaticSphere(true, true, 2);
+    ExpectSameBrightnessAndColour(closed, tracked);
     EXPECT_LT(closed.channelVariance, tracked.channelVariance)
         << closed.channelVariance << " vs " << tracked.channelVariance;
 }
