@@ -166,11 +166,17 @@ constexpr int kSobolDimensions = 1024;
 const std::array<uint32_t, kSobolMatrixColumns> &SobolMatrix(int dimension);
 
 // The Sobol' value of index a in any dimension below kSobolDimensions: the XOR of the matrix
-// columns of a's set bits.
+// columns of a's set bits. Four columns a step, each masked by its bit rather than branched on:
+// a sample index's bits are random, so a branch per bit mispredicts half the time.
 inline uint32_t SobolBitsFromMatrix(uint64_t a, const std::array<uint32_t, kSobolMatrixColumns> &c) {
+    static_assert(kSobolMatrixColumns % 4 == 0);
+    auto column = [&](int i, uint32_t bits) { return c[size_t(i)] & (0u - (bits & 1)); };
     uint32_t v = 0;
-    for (int i = 0; a != 0 && i < kSobolMatrixColumns; ++i, a >>= 1)
-        if (a & 1) v ^= c[i];
+    for (int i = 0; a != 0 && i < kSobolMatrixColumns; i += 4, a >>= 4) {
+        uint32_t bits = uint32_t(a);
+        v ^= column(i, bits) ^ column(i + 1, bits >> 1) ^ column(i + 2, bits >> 2) ^
+             column(i + 3, bits >> 3);
+    }
     return v;
 }
 
