@@ -331,7 +331,8 @@ int BDPTIntegrator::RandomWalk(SampledWavelengths &lambda, RayDifferential ray, 
                     Float pdfNull = T_maj[0] * sigma_n[0];
                     beta = pdfNull == 0 ? SampledSpectrum(0.f) : beta * T_maj * sigma_n / pdfNull;
                     return bool(beta);
-                });
+                },
+                MediumQuery::NoEmission);
             if (!scattered)
                 beta *= T_majEnd / T_majEnd[0];
         }

@@ -101,12 +101,14 @@ GridMedium::GridMedium(const Bounds3f &bounds, const Transform &renderFromMedium
     });
 }
 
-MediumProperties GridMedium::SamplePoint(Point3f p, const SampledWavelengths &lambda) const {
+MediumProperties GridMedium::SamplePoint(Point3f p, const SampledWavelengths &lambda,
+                                         MediumQuery query) const {
     Point3f pGrid(bounds.Offset(renderFromMedium.ApplyInverse(p)));
     Float d = density.Lookup(pGrid);
     SampledSpectrum sa = (sigmaScale * d) * sigma_a.Sample(lambda);
     SampledSpectrum ss = (sigmaScale * d) * sigma_s.Sample(lambda);
-    return MediumProperties{sa, ss, phase, Emission(pGrid, lambda)};
+    return MediumProperties{sa, ss, phase,
+                            query == MediumQuery::Full ? Emission(pGrid, lambda) : SampledSpectrum(0.f)};
 }
 
 SampledSpectrum GridMedium::Emission(Point3f pGrid, const SampledWavelengths &lambda) const {
@@ -148,13 +150,14 @@ RGBGridMedium::RGBGridMedium(const Bounds3f &bounds, const Transform &renderFrom
     });
 }
 
-MediumProperties RGBGridMedium::SamplePoint(Point3f p, const SampledWavelengths &lambda) const {
+MediumProperties RGBGridMedium::SamplePoint(Point3f p, const SampledWavelengths &lambda,
+                                            MediumQuery query) const {
     Point3f pGrid(bounds.Offset(renderFromMedium.ApplyInverse(p)));
     auto sample = [&](const auto &s) { return s.Sample(lambda); };
     SampledSpectrum sa = sigma_a ? sigma_a->Lookup(pGrid, sample) : SampledSpectrum(1.f);
     SampledSpectrum ss = sigma_s ? sigma_s->Lookup(pGrid, sample) : SampledSpectrum(1.f);
     SampledSpectrum emitted(0.f);
-    if (Le && LeScale > 0)
+    if (Le && LeScale > 0 && query == MediumQuery::Full)
         emitted = LeScale * Le->Lookup(pGrid, sample);
     return MediumProperties{sigmaScale * sa, sigmaScale * ss, phase, emitted};
 }

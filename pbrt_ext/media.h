@@ -76,6 +76,11 @@ struct MediumInteraction {
     Ray SpawnRayTo(Point3f p2) const { return Ray(p, p2 - p, medium, time); }
 };
 
+// What a caller needs of SamplePoint: everything, or all but the emission (shadow rays' ratio
+// tracking and bdpt's walks, which pbrt-v4 does not let media emit into), whose grid lookups
+// and blackbody spectra a grid medium then skips.
+enum class MediumQuery { Full, NoEmission };
+
 // Ratio tracking's factors at a tentative collision drawn with the hero wavelength's majorant
 // (T_maj sigma_maj is its density): the null-collision fraction T_maj sigma_n / p that the
 // transmittance estimate takes on, and T_maj sigma_maj / p, the other wavelengths' density
@@ -167,7 +172,8 @@ class HomogeneousMedium {
                       Float LeScale, Float g);
 
     bool IsEmissive() const { return emissive; }
-    MediumProperties SamplePoint(Point3f, const SampledWavelengths &lambda) const {
+    MediumProperties SamplePoint(Point3f, const SampledWavelengths &lambda,
+                                 MediumQuery = MediumQuery::Full) const {
         return MediumProperties{sigmaScale * sigma_a.Sample(lambda),
                                 sigmaScale * sigma_s.Sample(lambda), phase,
                                 emissive ? LeScale * Le.Sample(lambda) : SampledSpectrum(0.f)};
@@ -212,7 +218,8 @@ class GridMedium {
                GridEmission emission);
 
     bool IsEmissive() const { return emissive; }
-    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda) const;
+    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda,
+                                 MediumQuery query = MediumQuery::Full) const;
     DDAMajorantIterator SampleRay(Ray ray, Float tMax, const SampledWavelengths &lambda) const;
     const MajorantGrid &Majorants() const { return majorantGrid; }
 
@@ -244,7 +251,8 @@ class RGBGridMedium {
                   std::optional<SampledGrid<RGBIlluminantSpectrum>> Le, Float LeScale);
 
     bool IsEmissive() const { return Le && LeScale > 0; }
-    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda) const;
+    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda,
+                                 MediumQuery query = MediumQuery::Full) const;
     DDAMajorantIterator SampleRay(Ray ray, Float tMax, const SampledWavelengths &lambda) const;
     const MajorantGrid &Majorants() const { return majorantGrid; }
 
@@ -269,7 +277,8 @@ class CloudMedium {
                 Spectrum sigma_s, Float g, Float density, Float wispiness, Float frequency);
 
     bool IsEmissive() const { return false; }
-    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda) const {
+    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda,
+                                 MediumQuery = MediumQuery::Full) const {
         Float d = Density(renderFromMedium.ApplyInverse(p));
         return MediumProperties{d * sigma_a.Sample(lambda), d * sigma_s.Sample(lambda), phase,
                                 SampledSpectrum(0.f)};
@@ -307,7 +316,8 @@ class NanoVDBMedium {
     static uint64_t GridBytes(const std::string &filename);
 
     bool IsEmissive() const;
-    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda) const;
+    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda,
+                                 MediumQuery query = MediumQuery::Full) const;
     DDAMajorantIterator SampleRay(Ray ray, Float tMax, const SampledWavelengths &lambda) const;
     const MajorantGrid &Majorants() const { return *majorantGrid; }
     Bounds3f Bounds() const { return bounds; }
@@ -334,8 +344,9 @@ class Medium {
     bool IsEmissive() const {
         return std::visit([](const auto &m) { return m.IsEmissive(); }, medium);
     }
-    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda) const {
-        return std::visit([&](const auto &m) { return m.SamplePoint(p, lambda); }, medium);
+    MediumProperties SamplePoint(Point3f p, const SampledWavelengths &lambda,
+                                 MediumQuery query = MediumQuery::Full) const {
+        return std::visit([&](const auto &m) { return m.SamplePoint(p, lambda, query); }, medium);
     }
     template <typename T>
     const T *Get() const { return std::get_if<T>(&medium); }
@@ -357,26 +368,31 @@ class Medium {
     // callback(p, MediumProperties, sigma_maj, T_maj) at each, where T_maj is the majorant
     // transmittance since the previous one. The callback returns whether to go on. Returns
     // the majorant transmittance from the last collision to tMax, or 1 if the callback
-    // stopped.
+    // stopped. query: what the callback reads of the MediumProperties.
     template <typename F>
     SampledSpectrum SampleT_maj(Ray ray, Float tMax, Float u, RNG &rng,
-                                const SampledWavelengths &lambda, F callback) const {
+                                const SampledWavelengths &lambda, F callback,
+                                MediumQuery query = MediumQuery::Full) const {
         return std::visit(
-            [&](const auto &m) { return SampleT_majIn(m, ray, tMax, u, rng, lambda, callback); },
+            [&](const auto &m) {
+                return SampleT_majIn(m, ray, tMax, u, rng, lambda, callback, query);
+            },
             medium);
     }
 
   private:
     template <typename M, typename F>
     static SampledSpectrum SampleT_majIn(const M &medium, Ray ray, Float tMax, Float u, RNG &rng,
-                                         const SampledWavelengths &lambda, F &callback);
+                                         const SampledWavelengths &lambda, F &callback,
+                                         MediumQuery query);
 
     Variant medium;
 };
 
 template <typename M, typename F>
 SampledSpectrum Medium::SampleT_majIn(const M &medium, Ray ray, Float tMax, Float u, RNG &rng,
-                                      const SampledWavelengths &lambda, F &callback) {
+                                      const SampledWavelengths &lambda, F &callback,
+                                      MediumQuery query) {
     // Distances along a unit direction, so that sigma is per unit length.
     Float length = Length(ray.d);
     tMax *= length;
@@ -386,7 +402,7 @@ SampledSpectrum Medium::SampleT_majIn(const M &medium, Ray ray, Float tMax, Floa
     constexpr bool uniform = requires { M::kUniform; };
     std::optional<MediumProperties> uniformProperties;
     if constexpr (uniform)
-        uniformProperties = medium.SamplePoint(ray.o, lambda);
+        uniformProperties = medium.SamplePoint(ray.o, lambda, query);
     // An infinite segment (a ray escaping a medium with no boundary) has finite optical depth
     // only where sigma_maj is 0; the largest float keeps 0 * dt at 0.
     auto finite = [](Float dt) { return std::isinf(dt) ? std::numeric_limits<Float>::max() : dt; };
@@ -407,7 +423,7 @@ SampledSpectrum Medium::SampleT_majIn(const M &medium, Ray ray, Float tMax, Floa
             }
             SampledSpectrum T_maj = Exp(-(tau + (t - tMin) * seg->sigma_maj));
             Point3f p = ray(t);
-            if (!callback(p, uniform ? *uniformProperties : medium.SamplePoint(p, lambda),
+            if (!callback(p, uniform ? *uniformProperties : medium.SamplePoint(p, lambda, query),
                           seg->sigma_maj, T_maj))
                 return SampledSpectrum(1.f);
             tau = SampledSpectrum(0.f);

@@ -353,12 +353,13 @@ uint64_t NanoVDBMedium::GridBytes(const std::string &filename) {
 
 bool NanoVDBMedium::IsEmissive() const { return grids->temperature && LeScale > 0; }
 
-MediumProperties NanoVDBMedium::SamplePoint(Point3f p, const SampledWavelengths &lambda) const {
+MediumProperties NanoVDBMedium::SamplePoint(Point3f p, const SampledWavelengths &lambda,
+                                            MediumQuery query) const {
     p = renderFromMedium.ApplyInverse(p);
     nanovdb::Vec3f pw(p.x, p.y, p.z);
     Float d = TrilinearSampler(grids->density->getAccessor())(grids->density->worldToIndexF(pw));
     SampledSpectrum Le(0.f);
-    if (grids->temperature && LeScale > 0) {
+    if (grids->temperature && LeScale > 0 && query == MediumQuery::Full) {
         Float T = TrilinearSampler(grids->temperature->getAccessor())(
             grids->temperature->worldToIndexF(pw));
         T = (T - temperatureOffset) * temperatureScale;

@@ -29,7 +29,8 @@ SampledSpectrum Transmittance(const Scene &scene, Ray ray, Point3f target,
                 T_ray *= step.nullRatio;
                 inv_w *= step.majorantRatio;
                 return bool(T_ray) && bool(inv_w);
-            });
+            },
+            MediumQuery::NoEmission);
         T_ray *= T_majEnd / T_majEnd[0];
         inv_w *= T_majEnd / T_majEnd[0];
         return bool(T_ray) && bool(inv_w);

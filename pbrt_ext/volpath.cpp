@@ -322,7 +322,8 @@ SampledSpectrum VolPathIntegrator::Transmittance(Ray ray, Point3f pLight,
                         T_ray /= 0.25f;
                 }
                 return bool(T_ray);
-            });
+            },
+            MediumQuery::NoEmission);
         T_ray *= T_majEnd / T_majEnd[0];
         *r_l *= T_majEnd / T_majEnd[0];
         *r_u *= T_majEnd / T_majEnd[0];

@@ -185,6 +185,29 @@ TEST(Transmittance, ClosedFormIsRatioTrackingsMeanInAHomogeneousMedium) {
     EXPECT_FALSE(Medium(RandomGrid(3)).ClosedFormTransmittance(ray, tMax, lambda).has_value());
 }
 
+// Shadow rays ask for the coefficients without the emission: the same sigma_a and sigma_s,
+// and none of the emission's lookups (here a grid of Le scales).
+TEST(GridMedium, SamplesWithoutEmissionTheSameCoefficients) {
+    RNG rng(8);
+    std::vector<Float> scales(5 * 4 * 3);
+    for (Float &v : scales)
+        v = 0.5f + rng.Uniform<Float>();
+    GridEmission emission{Spectrum(2.f), SampledGrid<Float>(scales, 5, 4, 3), std::nullopt};
+    std::vector<Float> density(5 * 4 * 3, 1.f);
+    Medium m = GridMedium(kGridBox, kGridPlacement, Spectrum(0.7f), Spectrum(1.1f), 1.5f, 0,
+                          SampledGrid<Float>(density, 5, 4, 3), std::move(emission));
+    SampledWavelengths lambda = FixedWavelengths();
+    Point3f p = kGridPlacement(Point3f(0.2f, 0.1f, -0.3f));
+    MediumProperties full = m.SamplePoint(p, lambda);
+    MediumProperties noEmission = m.SamplePoint(p, lambda, MediumQuery::NoEmission);
+    EXPECT_GT(full.Le[0], 0) << "the medium must emit for the test to mean anything";
+    EXPECT_FALSE(bool(noEmission.Le));
+    for (int c = 0; c < NSpectrumSamples; ++c) {
+        EXPECT_EQ(full.sigma_a[c], noEmission.sigma_a[c]);
+        EXPECT_EQ(full.sigma_s[c], noEmission.sigma_s[c]);
+    }
+}
+
 // Counts the points where sigma_t exceeds sigmaPerUnit times the majorant grid's value in the
 // voxel holding the point (box: the medium's bounds, in the grid's space).
 template <typename M>
