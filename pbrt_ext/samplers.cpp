@@ -118,7 +118,7 @@ std::string HaltonSampler::ToString() const {
 }
 
 SobolSampler::SobolSampler(int samplesPerPixel, Point2i fullResolution, RandomizeStrategy randomize, int seed)
-    : samplesPerPixel(samplesPerPixel), seed(seed), randomize(randomize) {
+    : samplesPerPixel(samplesPerPixel), seed(seed), randomize(randomize), dimensionHashes(seed) {
     CheckCountAndResolution("sobol", samplesPerPixel, fullResolution);
     WarnUnlessPowerOfTwo("sobol", samplesPerPixel);
     log2Scale = std::countr_zero(std::bit_ceil(unsigned(std::max(fullResolution.x, fullResolution.y))));
@@ -207,7 +207,7 @@ std::string PMJ02BNSampler::ToString() const {
 
 ZSobolSampler::ZSobolSampler(int samplesPerPixel, Point2i fullResolution, RandomizeStrategy randomize,
                              int seed)
-    : randomize(randomize), seed(seed) {
+    : randomize(randomize), seed(seed), dimensionHashes(seed) {
     if (samplesPerPixel < 1 || fullResolution.x < 1 || fullResolution.y < 1)
         throw std::runtime_error("ZSobolSampler: samples per pixel and resolution must be positive");
     unsigned spp = std::bit_ceil(unsigned(samplesPerPixel));

@@ -109,6 +109,23 @@ class StratifiedSampler {
     int sampleIndex = 0, dimension = 0;
 };
 
+// Hash(dimension, seed) for a sampler's first kTabled dimensions, computed once: the Sobol'
+// samplers scramble every value of a dimension with it, the same for every pixel and sample.
+class DimensionHashes {
+  public:
+    static constexpr int kTabled = 64;
+    explicit DimensionHashes(int seed) : seed(seed) {
+        for (int d = 0; d < kTabled; ++d) hashes[d] = Hash(d, seed);
+    }
+    uint64_t operator()(int dimension) const {
+        return dimension < kTabled ? hashes[dimension] : Hash(dimension, seed);
+    }
+
+  private:
+    int seed;
+    uint64_t hashes[kTabled];
+};
+
 // Ahmed and Wonka's screen-space blue-noise Sobol' sampler (SIGGRAPH Asia 2020), as pbrt-v4:
 // pixels are ordered along a Morton curve, and the base-4 digits of (Morton index, sample index)
 // are shuffled by per-level hashed permutations before indexing a scrambled 2D Sobol' sequence;
@@ -144,13 +161,13 @@ class ZSobolSampler {
     PBRT_CPU_GPU Float Get1D() {
         uint64_t sampleIndex = GetSampleIndex();
         ++dimension;
-        uint32_t sampleHash = uint32_t(Hash(dimension, seed));
+        uint32_t sampleHash = uint32_t(dimensionHashes(dimension));
         return SobolSample(sampleIndex, 0, randomize, sampleHash);
     }
     PBRT_CPU_GPU Point2f Get2D() {
         uint64_t sampleIndex = GetSampleIndex();
         dimension += 2;
-        uint64_t bits = Hash(dimension, seed);
+        uint64_t bits = dimensionHashes(dimension);
         return {SobolSample(sampleIndex, 0, randomize, uint32_t(bits)),
                 SobolSample(sampleIndex, 1, randomize, uint32_t(bits >> 32))};
     }
@@ -206,6 +223,7 @@ class ZSobolSampler {
 
     RandomizeStrategy randomize;
     int seed, log2SamplesPerPixel, nBase4Digits;
+    DimensionHashes dimensionHashes;
     uint64_t mortonIndex = 0;
     int dimension = 0;
     // The pixel digits of GetSampleIndex for the dimensions below kCachedDimensions: bit d of
@@ -339,11 +357,12 @@ class SobolSampler {
 
     Float SampleDimension(int dim) const {
         uint32_t v = SobolBitsFromMatrix(sobolIndex, SobolMatrix(dim));
-        return BitsToUnitFloat(Scramble(v, randomize, uint32_t(Hash(dim, seed))));
+        return BitsToUnitFloat(Scramble(v, randomize, uint32_t(dimensionHashes(dim))));
     }
 
     int samplesPerPixel, seed, log2Scale;
     RandomizeStrategy randomize;
+    DimensionHashes dimensionHashes;
     uint32_t yInverse[32] = {};
     uint64_t sobolIndex = 0;
     int dimension = 0;
