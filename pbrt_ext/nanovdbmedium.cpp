@@ -31,8 +31,9 @@ struct NanoVDBMedium::Grids {
 namespace {
 
 // Trilinear lookups through a read accessor, which caches the path to the last leaf: the
-// eight samples of a lookup, and most lookups along a ray, share it (pbrt-v4 walks the tree from
-// its root for each of the eight).
+// eight samples of a lookup share it (pbrt-v4 walks the tree from its root for each of the
+// eight). An accessor kept per thread from one lookup to the next, for the collisions along a
+// ray, measured no faster (nanovdb-smoke, 240x180, 64 spp: 2.64-2.72 s against 2.64-2.77 s).
 using Accessor = nanovdb::FloatGrid::AccessorType;
 using TrilinearSampler = nanovdb::SampleFromVoxels<Accessor, 1, false>;
 
