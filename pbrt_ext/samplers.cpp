@@ -118,7 +118,7 @@ std::string HaltonSampler::ToString() const {
 }
 
 SobolSampler::SobolSampler(int samplesPerPixel, Point2i fullResolution, RandomizeStrategy randomize, int seed)
-    : samplesPerPixel(samplesPerPixel), seed(seed), randomize(randomize), dimensionHashes(seed) {
+    : samplesPerPixel(samplesPerPixel), randomize(randomize), dimensionHashes(seed) {
     CheckCountAndResolution("sobol", samplesPerPixel, fullResolution);
     WarnUnlessPowerOfTwo("sobol", samplesPerPixel);
     log2Scale = std::countr_zero(std::bit_ceil(unsigned(std::max(fullResolution.x, fullResolution.y))));
@@ -158,7 +158,7 @@ SobolSampler::SobolSampler(int samplesPerPixel, Point2i fullResolution, Randomiz
 
 std::string SobolSampler::ToString() const {
     return fmt::format("[ SobolSampler samplesPerPixel: {} randomize: {} seed: {} scale: {} ]",
-                       samplesPerPixel, RandomizeName(randomize), seed, 1 << log2Scale);
+                       samplesPerPixel, RandomizeName(randomize), dimensionHashes.Seed(), 1 << log2Scale);
 }
 
 PaddedSobolSampler::PaddedSobolSampler(int samplesPerPixel, RandomizeStrategy randomize, int seed)
@@ -207,7 +207,7 @@ std::string PMJ02BNSampler::ToString() const {
 
 ZSobolSampler::ZSobolSampler(int samplesPerPixel, Point2i fullResolution, RandomizeStrategy randomize,
                              int seed)
-    : randomize(randomize), seed(seed), dimensionHashes(seed) {
+    : randomize(randomize), dimensionHashes(seed) {
     if (samplesPerPixel < 1 || fullResolution.x < 1 || fullResolution.y < 1)
         throw std::runtime_error("ZSobolSampler: samples per pixel and resolution must be positive");
     unsigned spp = std::bit_ceil(unsigned(samplesPerPixel));
@@ -234,7 +234,8 @@ ZSobolSampler::ZSobolSampler(int samplesPerPixel, Point2i fullResolution, Random
 
 std::string ZSobolSampler::ToString() const {
     return "[ ZSobolSampler samplesPerPixel: " + std::to_string(SamplesPerPixel()) +
-           " randomize: " + RandomizeName(randomize) + " seed: " + std::to_string(seed) + " ]";
+           " randomize: " + RandomizeName(randomize) + " seed: " + std::to_string(dimensionHashes.Seed()) +
+           " ]";
 }
 
 }  // namespace pbrt

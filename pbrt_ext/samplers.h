@@ -120,6 +120,7 @@ class DimensionHashes {
     uint64_t operator()(int dimension) const {
         return dimension < kTabled ? hashes[dimension] : Hash(dimension, seed);
     }
+    int Seed() const { return seed; }
 
   private:
     int seed;
@@ -222,8 +223,8 @@ class ZSobolSampler {
     }
 
     RandomizeStrategy randomize;
-    int seed, log2SamplesPerPixel, nBase4Digits;
-    DimensionHashes dimensionHashes;
+    int log2SamplesPerPixel, nBase4Digits;
+    DimensionHashes dimensionHashes;  // and the seed
     uint64_t mortonIndex = 0;
     int dimension = 0;
     // The pixel digits of GetSampleIndex for the dimensions below kCachedDimensions: bit d of
@@ -360,9 +361,9 @@ class SobolSampler {
         return BitsToUnitFloat(Scramble(v, randomize, uint32_t(dimensionHashes(dim))));
     }
 
-    int samplesPerPixel, seed, log2Scale;
+    int samplesPerPixel, log2Scale;
     RandomizeStrategy randomize;
-    DimensionHashes dimensionHashes;
+    DimensionHashes dimensionHashes;  // and the seed
     uint32_t yInverse[32] = {};
     uint64_t sobolIndex = 0;
     int dimension = 0;

@@ -301,8 +301,9 @@ SampledSpectrum VolPathIntegrator::Transmittance(Ray ray, Point3f pLight,
             if (!((*T)[0] > 0))
                 return false;
             T_ray *= *T;
-            *r_l *= *T / (*T)[0];
-            *r_u *= *T / (*T)[0];
+            SampledSpectrum relativeToHero = *T / (*T)[0];
+            *r_l *= relativeToHero;
+            *r_u *= relativeToHero;
             return bool(T_ray);
         }
         SampledSpectrum T_majEnd = medium.SampleT_maj(
