@@ -109,6 +109,20 @@ struct SurfaceInteraction {
         return rd;
     }
 
+    // Replaces the shading frame by a bump or normal map's (pbrt-v4's SetShadingGeometry), so
+    // that every cosine and light-sampling context taken at the hit afterwards is the BSDF's:
+    // the normal is turned to n's side, and derivatives too large to describe a footprint are
+    // scaled down. dndu and dndv stay those of the unperturbed surface, as in pbrt-v4.
+    PBRT_CPU_GPU void SetShadingGeometry(Normal3f ns, Vector3f dpdus, Vector3f dpdvs) {
+        shading.n = FaceForward(ns, n);
+        shading.dpdu = dpdus;
+        shading.dpdv = dpdvs;
+        while (LengthSquared(shading.dpdu) > 1e16f || LengthSquared(shading.dpdv) > 1e16f) {
+            shading.dpdu /= 1e8f;
+            shading.dpdv /= 1e8f;
+        }
+    }
+
     // The medium a ray leaving in direction w travels through.
     PBRT_CPU_GPU int GetMedium(Vector3f w) const {
         return Dot(w, Vector3f(n)) > 0 ? mediumInterface.outside : mediumInterface.inside;

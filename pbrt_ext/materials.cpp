@@ -160,7 +160,7 @@ namespace {
 
 struct ShadingFrame {
     Normal3f n;
-    Vector3f dpdu;
+    Vector3f dpdu, dpdv;
 };
 
 // pbrt-v4's BumpMap: the surface displaced along the shading normal by d(u, v), differentiated by
@@ -188,9 +188,8 @@ ShadingFrame BumpMap(const FloatTexture &displacement, const SurfaceInteraction 
     Vector3f dpdv = si.shading.dpdv + (dV - d) / dv * n + d * Vector3f(si.shading.dndv);
     Normal3f ns(Normalize(Cross(dpdu, dpdv)));
     if (!IsFinite(ns.x) || LengthSquared(Vector3f(ns)) == 0)
-        return {si.shading.n, si.shading.dpdu};
-    // Keep the side of the unperturbed shading normal (pbrt-v4 flips the same way).
-    return {Dot(ns, si.shading.n) < 0 ? -ns : ns, dpdu};
+        return {si.shading.n, si.shading.dpdu, si.shading.dpdv};
+    return {ns, dpdu, dpdv};
 }
 
 // pbrt-v4's NormalMap: the map's RGB in [0, 1] is a tangent-space normal 2 rgb - 1 in the frame
@@ -201,23 +200,24 @@ ShadingFrame NormalMap(const Image &image, const SurfaceInteraction &si) {
     Vector3f local = Normalize(Vector3f(2 * rgb[0] - 1, 2 * rgb[1] - 1, 2 * rgb[2] - 1));
     Vector3f x = si.shading.dpdu - Dot(si.shading.dpdu, Vector3f(si.shading.n)) * Vector3f(si.shading.n);
     if (LengthSquared(x) == 0 || !IsFinite(local.x))
-        return {si.shading.n, si.shading.dpdu};
+        return {si.shading.n, si.shading.dpdu, si.shading.dpdv};
     Frame frame = Frame::FromXZ(Normalize(x), Vector3f(si.shading.n));
     Normal3f ns(frame.FromLocal(local));
-    return {ns, GramSchmidt(si.shading.dpdu, Vector3f(ns)) * Length(si.shading.dpdu)};
+    Vector3f dpdu = Normalize(GramSchmidt(si.shading.dpdu, Vector3f(ns))) * Length(si.shading.dpdu);
+    Vector3f dpdv = Normalize(Cross(Vector3f(ns), dpdu)) * Length(si.shading.dpdv);
+    return {ns, dpdu, dpdv};
 }
 
 }  // namespace
 
-BSDF Material::GetBSDF(const SurfaceInteraction &si, SampledWavelengths &lambda) const {
+BSDF Material::GetBSDF(SurfaceInteraction &si, SampledWavelengths &lambda) const {
+    if (displacement || normalMap) {
+        ShadingFrame frame = displacement ? BumpMap(*displacement, si) : NormalMap(*normalMap, si);
+        si.SetShadingGeometry(frame.n, frame.dpdu, frame.dpdv);
+    }
     TextureEvalContext ctx(si);
     BxDF bxdf = std::visit([&](const auto &m) { return m.GetBxDF(ctx, lambda); }, material);
-    ShadingFrame frame{si.shading.n, si.shading.dpdu};
-    if (displacement)
-        frame = BumpMap(*displacement, si);
-    else if (normalMap)
-        frame = NormalMap(*normalMap, si);
-    return BSDF(frame.n, frame.dpdu, std::move(bxdf));
+    return BSDF(si.shading.n, si.shading.dpdu, std::move(bxdf));
 }
 
 int MixMaterial::Choose(const SurfaceInteraction &si) const {

@@ -169,9 +169,11 @@ class Material {
     template <typename T>
     Material(T material) : material(std::move(material)) {}
 
-    // The BSDF at a hit for the path's wavelengths, in the hit's shading frame, perturbed by the
-    // bump or normal map if any. Terminates lambda's secondary wavelengths where it disperses.
-    BSDF GetBSDF(const SurfaceInteraction &si, SampledWavelengths &lambda) const;
+    // The BSDF at a hit for the path's wavelengths, in the hit's shading frame. A bump or normal
+    // map first perturbs that frame in si itself (pbrt-v4's SurfaceInteraction::GetBSDF), so
+    // that the integrators' cosines |wi . si.shading.n| are the BSDF's own. Terminates lambda's
+    // secondary wavelengths where it disperses.
+    BSDF GetBSDF(SurfaceInteraction &si, SampledWavelengths &lambda) const;
 
     const MixMaterial *AsMix() const { return std::get_if<MixMaterial>(&material); }
     // The BSSRDF under the surface at a hit, for a subsurface material; none for the others.

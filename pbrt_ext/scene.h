@@ -79,12 +79,13 @@ class Scene {
             cr->ray.medium = cameraMedium;
         return cr;
     }
-    // The BSDF at a hit, mixes resolved; none for an interface (a surface that only bounds media).
     // The first surface with a material along a camera ray, in the g-buffer's space (camera or
     // world), with its albedo; none where the ray escapes. A second query of the camera ray,
     // made only for the g-buffer film.
     std::optional<VisibleSurface> FirstVisibleSurface(RayDifferential ray, SampledWavelengths lambda) const;
-    std::optional<BSDF> GetBSDF(const SurfaceInteraction &si, SampledWavelengths &lambda) const {
+    // The BSDF at a hit, mixes resolved; none for an interface (a surface that only bounds media).
+    // A bump or normal map replaces si's shading frame (Material::GetBSDF): call it once per hit.
+    std::optional<BSDF> GetBSDF(SurfaceInteraction &si, SampledWavelengths &lambda) const {
         int index = ResolveMaterial(si);
         if (index < 0) return std::nullopt;
         return materials[index].GetBSDF(si, lambda);

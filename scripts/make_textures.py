@@ -1,5 +1,5 @@
-"""Writes the images of the texture and light scenes: scenes/textures/plaid.png, tiles.png and
-goniometric.png.
+"""Writes the images of the texture and light scenes: scenes/textures/plaid.png, tiles.png,
+goniometric.png and dimples.png.
 
 Usage: python3 scripts/make_textures.py [out_dir]   (default: scenes/textures)
 Deterministic, standard library only (PNG through zlib), so rerunning it reproduces the files.
@@ -13,7 +13,12 @@ goniometric.png: a 64 x 64 8-bit gray goniometric diagram in pbrt's equal-area o
 square: |u - 1/2| + |v - 1/2| grows from the pole at the centre to the opposite pole at the
 corners, so bands of it are bands of latitude; bright bands alternate with dim ones, brightest
 around the pole, and one quadrant (an azimuth range) is dimmed.
+dimples.png: a 128 x 128 8-bit tangent-space normal map (rgb = (n + 1) / 2, read linearly, as
+pbrt-v4 reads normal maps) of 4 x 4 round dimples, each the bottom of a sphere half a cell in
+radius cut 0.4 cells wide: normals tilt toward each dimple's centre, up to 53 degrees at its rim,
+and are flat between the dimples.
 """
+import math
 import os
 import struct
 import sys
@@ -66,11 +71,22 @@ def goniometric(x, y):
     return (int(round(255 * level)),)
 
 
+def dimples(x, y):
+    # Offsets from the cell's centre in cells; inside the rim the surface is z = -sqrt(R^2 - d^2).
+    dx, dy = (x % 32 + 0.5) / 32 - 0.5, (y % 32 + 0.5) / 32 - 0.5
+    sphere, rim = 0.5, 0.4
+    n = (0.0, 0.0, 1.0)
+    if dx * dx + dy * dy < rim * rim:
+        n = (-dx / sphere, -dy / sphere, math.sqrt(sphere * sphere - dx * dx - dy * dy) / sphere)
+    return tuple(int(round(255 * (c + 1) / 2)) for c in n)
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "scenes", "textures")
     write_png(os.path.join(out, "plaid.png"), 200, 200, 3, plaid)
     write_png(os.path.join(out, "tiles.png"), 256, 256, 1, tiles)
     write_png(os.path.join(out, "goniometric.png"), 64, 64, 1, goniometric)
+    write_png(os.path.join(out, "dimples.png"), 128, 128, 3, dimples)
 
 
 if __name__ == "__main__":

@@ -45,8 +45,9 @@ std::string LoadError(const std::string &file) {
     return "no error";
 }
 
-// The BSDF of a scene's material at a hit, for some visible wavelengths.
-BSDF GetBSDF(const Material &m, const SurfaceInteraction &si) {
+// The BSDF of a scene's material at a hit, for some visible wavelengths. si is a copy: a bump
+// or normal map perturbs its shading frame.
+BSDF GetBSDF(const Material &m, SurfaceInteraction si) {
     SampledWavelengths lambda = SampledWavelengths::SampleVisible(0.5f);
     return m.GetBSDF(si, lambda);
 }
@@ -120,7 +121,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                          "realistic-camera.pbrt", "spectral-film.pbrt",
                                          "gbuffer-film.pbrt", "displacement.pbrt",
                                          "colorspaces.pbrt", "measured.pbrt",
-                                         "subsurface.pbrt"));
+                                         "subsurface.pbrt", "bump-maps.pbrt"));
 
 // Curves of each type with hair, a moving cylinder, a moving spherical camera, a bump map (ray
 // differentials), tangents S and a subdivision surface, all in one scene (also a fuzz seed).
