@@ -178,9 +178,9 @@ SurfaceInteraction BilinearPatch::InteractionFromIntersection(const BilinearPatc
                 Transform r = Rotate(sinTheta, cosTheta, axis);
                 Vector3f sdpdu = r(dpdu), sdpdv = r(dpdv);
                 sdpdu = GramSchmidt(sdpdu, Vector3f(ns));
-                SetShadingGeometry(&si, ns, sdpdu, sdpdv);
+                si.SetShadingGeometry(ns, sdpdu, sdpdv, true);
             } else {
-                SetShadingGeometry(&si, ns, dpdu, dpdv);
+                si.SetShadingGeometry(ns, dpdu, dpdv, true);
             }
         }
     }

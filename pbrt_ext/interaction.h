@@ -109,18 +109,23 @@ struct SurfaceInteraction {
         return rd;
     }
 
-    // Replaces the shading frame by a bump or normal map's (pbrt-v4's SetShadingGeometry), so
-    // that every cosine and light-sampling context taken at the hit afterwards is the BSDF's:
-    // the normal is turned to n's side, and derivatives too large to describe a footprint are
-    // scaled down. dndu and dndv stay those of the unperturbed surface, as in pbrt-v4.
-    PBRT_CPU_GPU void SetShadingGeometry(Normal3f ns, Vector3f dpdus, Vector3f dpdvs) {
-        shading.n = FaceForward(ns, n);
+    // Replaces the shading frame (pbrt-v4's SetShadingGeometry). Where the orientation is
+    // authoritative (a mesh's vertex normals), n moves to ns's side; otherwise (a bump or normal
+    // map) ns is turned to n's side. Tangents too large to take products of are scaled down.
+    // dndu and dndv stay those of the unperturbed surface, as in pbrt-v4.
+    PBRT_CPU_GPU void SetShadingGeometry(Normal3f ns, Vector3f dpdus, Vector3f dpdvs,
+                                         bool orientationIsAuthoritative) {
+        shading.n = ns;
+        if (orientationIsAuthoritative)
+            n = FaceForward(n, shading.n);
+        else
+            shading.n = FaceForward(shading.n, n);
+        while (LengthSquared(dpdus) > 1e16f || LengthSquared(dpdvs) > 1e16f) {
+            dpdus /= 1e8f;
+            dpdvs /= 1e8f;
+        }
         shading.dpdu = dpdus;
         shading.dpdv = dpdvs;
-        while (LengthSquared(shading.dpdu) > 1e16f || LengthSquared(shading.dpdv) > 1e16f) {
-            shading.dpdu /= 1e8f;
-            shading.dpdv /= 1e8f;
-        }
     }
 
     // The medium a ray leaving in direction w travels through.

@@ -213,7 +213,7 @@ ShadingFrame NormalMap(const Image &image, const SurfaceInteraction &si) {
 BSDF Material::GetBSDF(SurfaceInteraction &si, SampledWavelengths &lambda) const {
     if (displacement || normalMap) {
         ShadingFrame frame = displacement ? BumpMap(*displacement, si) : NormalMap(*normalMap, si);
-        si.SetShadingGeometry(frame.n, frame.dpdu, frame.dpdv);
+        si.SetShadingGeometry(frame.n, frame.dpdu, frame.dpdv, false);
     }
     TextureEvalContext ctx(si);
     BxDF bxdf = std::visit([&](const auto &m) { return m.GetBxDF(ctx, lambda); }, material);

@@ -58,19 +58,6 @@ inline SurfaceInteraction MakeInteraction(Point3f p, Point2f uv, Vector3f wo, Ve
     return si;
 }
 
-// pbrt-v4's SetShadingGeometry with an authoritative shading normal: the geometric normal moves
-// to its side. Huge tangents are scaled down so that later products cannot overflow.
-inline void SetShadingGeometry(SurfaceInteraction *si, Normal3f ns, Vector3f dpdus, Vector3f dpdvs) {
-    si->shading.n = ns;
-    si->n = FaceForward(si->n, ns);
-    while (LengthSquared(dpdus) > 1e16f || LengthSquared(dpdvs) > 1e16f) {
-        dpdus /= 1e8f;
-        dpdvs /= 1e8f;
-    }
-    si->shading.dpdu = dpdus;
-    si->shading.dpdv = dpdvs;
-}
-
 // |det| of the transform's linear part: how it scales volume.
 inline Float AbsDeterminant(const Transform &t) {
     Vector3f ax = t(Vector3f(1, 0, 0)), ay = t(Vector3f(0, 1, 0)), az = t(Vector3f(0, 0, 1));

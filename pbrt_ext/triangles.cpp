@@ -187,7 +187,7 @@ SurfaceInteraction Triangle::InteractionFromIntersection(const TriangleMesh *mes
             ss = Cross(ts, ns);
         else
             CoordinateSystem(ns, &ss, &ts);
-        SetShadingGeometry(&si, ns, ss, ts);
+        si.SetShadingGeometry(ns, ss, ts, true);
         if (!mesh->n.empty())
             NormalDerivatives(mesh, v, duv02, duv12, degenerateUV, &si);
     }
