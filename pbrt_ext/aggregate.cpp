@@ -490,12 +490,17 @@ struct EmbreeAggregate::Impl {
                                      ErrorName(code) + ")");
     }
 
-    // A quadric's hit record holds its object-space point where the normal would be.
+    // A quadric's hit record holds its object-space point where the normal would be. An
+    // interface (no material, not emissive) is only passed through, so its hit gets the point
+    // and normals alone: on a sphere bounding a medium, most hits are such crossings.
     template <typename Quadric>
-    static SurfaceInteraction QuadricInteraction(const GeometryRecord &g, const RTCRayHit &rh,
+    static SurfaceInteraction FromQuadricRecord(const GeometryRecord &g, const RTCRayHit &rh,
                                                  Vector3f wo) {
-        return static_cast<const Quadric *>(g.shape)->InteractionFromIntersection(
-            {rh.ray.tfar, Point3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z)}, wo);
+        const Quadric &shape = *static_cast<const Quadric *>(g.shape);
+        QuadricIntersection isect{rh.ray.tfar, Point3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z)};
+        bool boundary = g.attrs.materialIndex < 0 && g.attrs.areaLightBase < 0;
+        return boundary ? shape.BoundaryFromIntersection(isect, wo)
+                        : shape.InteractionFromIntersection(isect, wo);
     }
 
     // localRay: the ray in the space of the geometry's scene (an instance's, or the world).
@@ -515,11 +520,11 @@ struct EmbreeAggregate::Impl {
                 static_cast<const BilinearPatchMesh *>(g.shape), int(hit.primID),
                 Point2f(hit.u, hit.v), wo);
         case GeometryKind::Sphere:
-            return QuadricInteraction<Sphere>(g, rh, wo);
+            return FromQuadricRecord<Sphere>(g, rh, wo);
         case GeometryKind::Cylinder:
-            return QuadricInteraction<Cylinder>(g, rh, wo);
+            return FromQuadricRecord<Cylinder>(g, rh, wo);
         case GeometryKind::Disk:
-            return QuadricInteraction<Disk>(g, rh, wo);
+            return FromQuadricRecord<Disk>(g, rh, wo);
         case GeometryKind::Instance:
             break;
         }

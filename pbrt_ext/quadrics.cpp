@@ -151,24 +151,29 @@ pstd::optional<QuadricIntersection> Sphere::BasicIntersect(const Ray &r, Float t
     return {};
 }
 
-SurfaceInteraction Sphere::InteractionFromIntersection(const QuadricIntersection &isect,
-                                                       Vector3f wo) const {
-    Point3f p = isect.pObj;
+QuadricTangents Sphere::Tangents(Point3f p) const {
     Float zRadius = std::sqrt(Sqr(p.x) + Sqr(p.y));
     Float cosPhi = p.x / zRadius, sinPhi = p.y / zRadius;
     Float sinTheta = SafeSqrt(1 - Sqr(p.z / radius));
-    Vector3f dpdu(-phiMax * p.y, phiMax * p.x, 0);
-    Vector3f dpdv = (thetaZMax - thetaZMin) *
-                    Vector3f(p.z * cosPhi, p.z * sinPhi, -radius * sinTheta);
-    SurfaceInteraction local = MakeInteraction(p, UV(p), Vector3f(), dpdu, dpdv, FlipNormal());
+    return {Vector3f(-phiMax * p.y, phiMax * p.x, 0),
+            (thetaZMax - thetaZMin) * Vector3f(p.z * cosPhi, p.z * sinPhi, -radius * sinTheta)};
+}
+
+SurfaceInteraction Sphere::BoundaryFromIntersection(const QuadricIntersection &isect,
+                                                    Vector3f wo) const {
+    return QuadricBoundary(worldFromObject, isect.pObj, Tangents(isect.pObj), FlipNormal(), wo);
+}
+
+SurfaceInteraction Sphere::InteractionFromIntersection(const QuadricIntersection &isect,
+                                                       Vector3f wo) const {
+    Point3f p = isect.pObj;
+    QuadricTangents t = Tangents(p);
     // The outward normal is p / r, so it turns as p does (the Weingarten equations' answer for a
     // sphere); a flipped normal turns the other way.
     Float sign = FlipNormal() ? -1 : 1;
-    local.shading.dndu = Normal3f(sign * dpdu / radius);
-    local.shading.dndv = Normal3f(sign * dpdv / radius);
-    SurfaceInteraction si = TransformInteraction(worldFromObject, local);
-    si.wo = wo;
-    return si;
+    return QuadricInteraction(worldFromObject, p, UV(p), t, FlipNormal(),
+                              {Normal3f(sign * t.dpdu / radius), Normal3f(sign * t.dpdv / radius)},
+                              wo);
 }
 
 pstd::optional<ShapeIntersection> Sphere::Intersect(const Ray &ray, Float tMax) const {
@@ -324,19 +329,24 @@ pstd::optional<QuadricIntersection> Cylinder::BasicIntersect(const Ray &r, Float
     return {};
 }
 
+QuadricTangents Cylinder::Tangents(Point3f p) const {
+    return {Vector3f(-phiMax * p.y, phiMax * p.x, 0), Vector3f(0, 0, zMax - zMin)};
+}
+
+SurfaceInteraction Cylinder::BoundaryFromIntersection(const QuadricIntersection &isect,
+                                                      Vector3f wo) const {
+    return QuadricBoundary(worldFromObject, isect.pObj, Tangents(isect.pObj), FlipNormal(), wo);
+}
+
 SurfaceInteraction Cylinder::InteractionFromIntersection(const QuadricIntersection &isect,
                                                          Vector3f wo) const {
     Point3f p = isect.pObj;
-    Vector3f dpdu(-phiMax * p.y, phiMax * p.x, 0), dpdv(0, 0, zMax - zMin);
-    SurfaceInteraction local = MakeInteraction(p, UV(p), Vector3f(), dpdu, dpdv, FlipNormal());
+    QuadricTangents t = Tangents(p);
     // The outward normal (x, y, 0) / r turns with u as p does and not at all with v (the
     // Weingarten equations: dn/du = dp/du / r, dn/dv = 0).
     Float sign = FlipNormal() ? -1 : 1;
-    local.shading.dndu = Normal3f(sign * dpdu / radius);
-    local.shading.dndv = Normal3f(0, 0, 0);
-    SurfaceInteraction si = TransformInteraction(worldFromObject, local);
-    si.wo = wo;
-    return si;
+    return QuadricInteraction(worldFromObject, p, UV(p), t, FlipNormal(),
+                              {Normal3f(sign * t.dpdu / radius), Normal3f(0, 0, 0)}, wo);
 }
 
 pstd::optional<ShapeIntersection> Cylinder::Intersect(const Ray &ray, Float tMax) const {
@@ -434,16 +444,21 @@ pstd::optional<QuadricIntersection> Disk::BasicIntersect(const Ray &r, Float tMa
     return QuadricIntersection{tShapeHit, pHit};
 }
 
+QuadricTangents Disk::Tangents(Point3f p) const {
+    Float rHit = std::sqrt(Sqr(p.x) + Sqr(p.y));
+    return {Vector3f(-phiMax * p.y, phiMax * p.x, 0),
+            Vector3f(p.x, p.y, 0) * ((innerRadius - radius) / rHit)};
+}
+
+SurfaceInteraction Disk::BoundaryFromIntersection(const QuadricIntersection &isect,
+                                                  Vector3f wo) const {
+    return QuadricBoundary(worldFromObject, isect.pObj, Tangents(isect.pObj), FlipNormal(), wo);
+}
+
 SurfaceInteraction Disk::InteractionFromIntersection(const QuadricIntersection &isect,
                                                      Vector3f wo) const {
     Point3f p = isect.pObj;
-    Float rHit = std::sqrt(Sqr(p.x) + Sqr(p.y));
-    Vector3f dpdu(-phiMax * p.y, phiMax * p.x, 0);
-    Vector3f dpdv = Vector3f(p.x, p.y, 0) * ((innerRadius - radius) / rHit);
-    SurfaceInteraction si = TransformInteraction(
-        worldFromObject, MakeInteraction(p, UV(p), Vector3f(), dpdu, dpdv, FlipNormal()));
-    si.wo = wo;
-    return si;
+    return QuadricInteraction(worldFromObject, p, UV(p), Tangents(p), FlipNormal(), {}, wo);
 }
 
 pstd::optional<ShapeIntersection> Disk::Intersect(const Ray &ray, Float tMax) const {

@@ -130,6 +130,11 @@ struct QuadricIntersection {
     Point3f pObj;
 };
 
+// A quadric's dp/du and dp/dv at an object-space point; their cross product is its normal.
+struct QuadricTangents {
+    Vector3f dpdu, dpdv;
+};
+
 // A sphere of the given radius around the object-space origin, clipped to z in [zMin, zMax] and
 // azimuth in [0, phiMax] (degrees).
 class Sphere {
@@ -141,6 +146,9 @@ class Sphere {
     pstd::optional<QuadricIntersection> BasicIntersect(const Ray &ray, Float tMax) const;
     SurfaceInteraction InteractionFromIntersection(const QuadricIntersection &isect,
                                                    Vector3f wo) const;
+    // The same hit's p and normals only, bit for bit, for a surface that only bounds media.
+    SurfaceInteraction BoundaryFromIntersection(const QuadricIntersection &isect,
+                                                Vector3f wo) const;
     pstd::optional<ShapeIntersection> Intersect(const Ray &ray, Float tMax = Infinity) const;
     bool IntersectP(const Ray &ray, Float tMax = Infinity) const;
     pstd::optional<ShapeSample> Sample(Point2f u) const;
@@ -154,6 +162,7 @@ class Sphere {
 
   private:
     bool FlipNormal() const { return reverseOrientation ^ transformSwapsHandedness; }
+    QuadricTangents Tangents(Point3f pObj) const;
     Point2f UV(Point3f pObj) const;
     // How the transform scales area at pObj; the area density of uniform object-space
     // sampling there, per unit world-space area.
@@ -180,6 +189,9 @@ class Cylinder {
     pstd::optional<QuadricIntersection> BasicIntersect(const Ray &ray, Float tMax) const;
     SurfaceInteraction InteractionFromIntersection(const QuadricIntersection &isect,
                                                    Vector3f wo) const;
+    // The same hit's p and normals only, bit for bit, for a surface that only bounds media.
+    SurfaceInteraction BoundaryFromIntersection(const QuadricIntersection &isect,
+                                                Vector3f wo) const;
     pstd::optional<ShapeIntersection> Intersect(const Ray &ray, Float tMax = Infinity) const;
     bool IntersectP(const Ray &ray, Float tMax = Infinity) const;
     // Uniform in z and phi: uniform in area in object space; AreaPDF accounts for the transform.
@@ -193,6 +205,7 @@ class Cylinder {
 
   private:
     bool FlipNormal() const { return reverseOrientation ^ transformSwapsHandedness; }
+    QuadricTangents Tangents(Point3f pObj) const;
     Point2f UV(Point3f pObj) const;
     Float AreaPDF(Point3f pObj) const;
 
@@ -213,6 +226,9 @@ class Disk {
     pstd::optional<QuadricIntersection> BasicIntersect(const Ray &ray, Float tMax) const;
     SurfaceInteraction InteractionFromIntersection(const QuadricIntersection &isect,
                                                    Vector3f wo) const;
+    // The same hit's p and normals only, bit for bit, for a surface that only bounds media.
+    SurfaceInteraction BoundaryFromIntersection(const QuadricIntersection &isect,
+                                                Vector3f wo) const;
     pstd::optional<ShapeIntersection> Intersect(const Ray &ray, Float tMax = Infinity) const;
     bool IntersectP(const Ray &ray, Float tMax = Infinity) const;
     pstd::optional<ShapeSample> Sample(Point2f u) const;
@@ -225,6 +241,7 @@ class Disk {
 
   private:
     bool FlipNormal() const { return reverseOrientation ^ transformSwapsHandedness; }
+    QuadricTangents Tangents(Point3f pObj) const;
     Point2f UV(Point3f pObj) const;
 
     Transform worldFromObject, objectFromWorld;

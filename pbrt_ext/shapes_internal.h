@@ -58,6 +58,36 @@ inline SurfaceInteraction MakeInteraction(Point3f p, Point2f uv, Vector3f wo, Ve
     return si;
 }
 
+// How a quadric's normal turns across it (the Weingarten equations' dn/du and dn/dv).
+struct QuadricNormalDerivatives {
+    Normal3f dndu, dndv;
+};
+
+// A quadric's full hit from its object-space point, uv and tangents, carried to the world.
+inline SurfaceInteraction QuadricInteraction(const Transform &worldFromObject, Point3f pObj,
+                                             Point2f uv, QuadricTangents t, bool flipNormal,
+                                             QuadricNormalDerivatives dn, Vector3f wo) {
+    SurfaceInteraction local = MakeInteraction(pObj, uv, Vector3f(), t.dpdu, t.dpdv, flipNormal);
+    local.shading.dndu = dn.dndu;
+    local.shading.dndv = dn.dndv;
+    SurfaceInteraction si = TransformInteraction(worldFromObject, local);
+    si.wo = wo;
+    return si;
+}
+
+// What passing through an interface needs of a quadric's hit: p and the normals, computed as
+// QuadricInteraction computes them (MakeInteraction, then TransformInteraction), bit for bit,
+// without the uv (its atan2 and acos), derivatives and shading frame it also builds.
+inline SurfaceInteraction QuadricBoundary(const Transform &worldFromObject, Point3f pObj,
+                                          QuadricTangents t, bool flipNormal, Vector3f wo) {
+    Normal3f n(Normalize(Cross(t.dpdu, t.dpdv)));
+    SurfaceInteraction si;
+    si.p = worldFromObject(pObj);
+    si.n = si.shading.n = Normalize(worldFromObject(flipNormal ? -n : n));
+    si.wo = wo;
+    return si;
+}
+
 // |det| of the transform's linear part: how it scales volume.
 inline Float AbsDeterminant(const Transform &t) {
     Vector3f ax = t(Vector3f(1, 0, 0)), ay = t(Vector3f(0, 1, 0)), az = t(Vector3f(0, 0, 1));

@@ -263,6 +263,46 @@ TEST(Disk, ReverseOrientationAndScale) {
     EXPECT_NEAR(d.Area(), 4 * Pi, 1e-4f);
 }
 
+// An interface's hit (no material) is built by BoundaryFromIntersection: p and the normals
+// only. They must be InteractionFromIntersection's bit for bit, or rays crossing a medium's
+// boundary would start on another side of it than the full hit says.
+template <typename Quadric>
+void ExpectBoundaryIsTheFullHits(const Quadric &shape, RNG &rng) {
+    int hits = 0;
+    for (int i = 0; i < 200; ++i) {
+        Point3f o(8 * (rng.Uniform<Float>() - 0.5f), 8 * (rng.Uniform<Float>() - 0.5f),
+                  8 * (rng.Uniform<Float>() - 0.5f));
+        Vector3f d = Normalize(Vector3f(0.3f, -0.2f, 0.1f) - Vector3f(o) +
+                               Vector3f(rng.Uniform<Float>(), rng.Uniform<Float>(), 0));
+        pstd::optional<QuadricIntersection> isect = shape.BasicIntersect(Ray(o, d), Infinity);
+        if (!isect)
+            continue;
+        ++hits;
+        SurfaceInteraction full = shape.InteractionFromIntersection(*isect, -d);
+        SurfaceInteraction boundary = shape.BoundaryFromIntersection(*isect, -d);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_EQ(boundary.p[c], full.p[c]);
+            EXPECT_EQ(boundary.n[c], full.n[c]);
+            EXPECT_EQ(boundary.shading.n[c], full.shading.n[c]);
+            EXPECT_EQ(boundary.wo[c], full.wo[c]);
+        }
+        EXPECT_EQ(boundary.errorBound, full.errorBound);
+    }
+    EXPECT_GT(hits, 50);
+}
+
+TEST(Quadrics, BoundaryHitsAreTheFullHitsPointAndNormals) {
+    RNG rng(11);
+    Transform mirrored = Translate(Vector3f(0.2f, -0.1f, 0.3f)) * Scale(-1, 1.5f, 1) *
+                         Rotate(30, Vector3f(1, 1, 0));
+    for (bool reverse : {false, true})
+        for (const Transform &t : {Transform(), mirrored}) {
+            ExpectBoundaryIsTheFullHits(Sphere(t, reverse, 1.5f, -1.2f, 1.5f, 300), rng);
+            ExpectBoundaryIsTheFullHits(Cylinder(t, reverse, 1.5f, -1, 1, 300), rng);
+            ExpectBoundaryIsTheFullHits(Disk(t, reverse, 0.2f, 2, 0.3f, 300), rng);
+        }
+}
+
 // ---------------------------------------------------------------------------------------
 // Triangle
 
