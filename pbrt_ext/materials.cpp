@@ -203,7 +203,10 @@ ShadingFrame NormalMap(const Image &image, const SurfaceInteraction &si) {
         return {si.shading.n, si.shading.dpdu, si.shading.dpdv};
     Frame frame = Frame::FromXZ(Normalize(x), Vector3f(si.shading.n));
     Normal3f ns(frame.FromLocal(local));
-    Vector3f dpdu = Normalize(GramSchmidt(si.shading.dpdu, Vector3f(ns))) * Length(si.shading.dpdu);
+    Vector3f tangent = GramSchmidt(si.shading.dpdu, Vector3f(ns));
+    if (LengthSquared(tangent) == 0)  // the map's normal lies along dpdu: the old normal is a tangent
+        tangent = Vector3f(si.shading.n);
+    Vector3f dpdu = Normalize(tangent) * Length(si.shading.dpdu);
     Vector3f dpdv = Normalize(Cross(Vector3f(ns), dpdu)) * Length(si.shading.dpdv);
     return {ns, dpdu, dpdv};
 }

@@ -78,6 +78,24 @@ TEST(BumpMapping, TheHitTakesTheBSDFsShadingFrame) {
     EXPECT_GT(Dot(Vector3f(si.shading.n), Vector3f(si.n)), 0);
 }
 
+TEST(NormalMapping, ANormalAlongDpduStillLeavesTheHitFiniteTangents) {
+    // rgb (1, 0.5, 0.5) is dpdu's own direction: no part of dpdu is left to be a tangent.
+    auto image = std::make_shared<Image>(Point2i(1, 1));
+    image->SetChannel(Point2i(0, 0), 0, 1);
+    image->SetChannel(Point2i(0, 0), 1, 0.5f);
+    image->SetChannel(Point2i(0, 0), 2, 0.5f);
+    Material m = DiffuseMaterial{};
+    m.SetNormalMap(image);
+    SurfaceInteraction si = PlaneHit(Point2f(0.4f, 0.6f));
+    SampledWavelengths lambda = SampledWavelengths::SampleVisible(0.5f);
+    m.GetBSDF(si, lambda);
+    for (Vector3f t : {si.shading.dpdu, si.shading.dpdv}) {
+        ASSERT_TRUE(IsFinite(t.x) && IsFinite(t.y) && IsFinite(t.z));
+        EXPECT_NEAR(Length(t), 1, 1e-5f);
+        EXPECT_NEAR(Dot(t, Vector3f(si.shading.n)), 0, 1e-5f);
+    }
+}
+
 TEST(NormalMapping, TheHitTakesTheBSDFsShadingFrame) {
     auto image = std::make_shared<Image>(Point2i(1, 1));
     for (int c = 0; c < 3; ++c)
