@@ -31,8 +31,9 @@ SampledSpectrum Transmittance(const Scene &scene, Ray ray, Point3f target,
                 return bool(T_ray) && bool(inv_w);
             },
             MediumQuery::NoEmission);
-        T_ray *= T_majEnd / T_majEnd[0];
-        inv_w *= T_majEnd / T_majEnd[0];
+        SampledSpectrum tailRelativeToHero = T_majEnd / T_majEnd[0];
+        T_ray *= tailRelativeToHero;
+        inv_w *= tailRelativeToHero;
         return bool(T_ray) && bool(inv_w);
     });
     return reached ? T_ray / inv_w.Average() : SampledSpectrum(0.f);

@@ -237,9 +237,10 @@ VolPathIntegrator::MediumOutcome VolPathIntegrator::SampleMedium(PathState &path
     if (scattered)
         return MediumOutcome::Scattered;
     // Past the last collision: the majorant transmittance over its own probability.
-    path.beta *= T_majEnd / T_majEnd[0];
-    path.r_u *= T_majEnd / T_majEnd[0];
-    path.r_l *= T_majEnd / T_majEnd[0];
+    SampledSpectrum tailRelativeToHero = T_majEnd / T_majEnd[0];
+    path.beta *= tailRelativeToHero;
+    path.r_u *= tailRelativeToHero;
+    path.r_l *= tailRelativeToHero;
     return MediumOutcome::PassedThrough;
 }
 
@@ -325,9 +326,10 @@ SampledSpectrum VolPathIntegrator::Transmittance(Ray ray, Point3f pLight,
                 return bool(T_ray);
             },
             MediumQuery::NoEmission);
-        T_ray *= T_majEnd / T_majEnd[0];
-        *r_l *= T_majEnd / T_majEnd[0];
-        *r_u *= T_majEnd / T_majEnd[0];
+        SampledSpectrum tailRelativeToHero = T_majEnd / T_majEnd[0];
+        T_ray *= tailRelativeToHero;
+        *r_l *= tailRelativeToHero;
+        *r_u *= tailRelativeToHero;
         return bool(T_ray);
     });
     return reached ? T_ray : SampledSpectrum(0.f);
