@@ -46,10 +46,12 @@ Float DenselySampledSpectrum::MaxValue() const {
 
 Float PiecewiseLinearSpectrum::operator()(Float lambda) const {
     if (lambdas.empty() || lambda < lambdas.front() || lambda > lambdas.back()) return 0;
-    size_t i = size_t(std::upper_bound(lambdas.begin(), lambdas.end(), lambda) - lambdas.begin());
-    if (i >= lambdas.size()) return values.back();
-    Float t = (lambda - lambdas[i - 1]) / (lambdas[i] - lambdas[i - 1]);
-    return Lerp(t, values[i - 1], values[i]);
+    if (lambda == lambdas.back()) return values.back();
+    // The last node at or below lambda; the one after it lies above.
+    size_t i = size_t(detail::FindInterval(int(lambdas.size()),
+                                           [&](int k) { return lambdas[size_t(k)] <= lambda; }));
+    Float t = (lambda - lambdas[i]) / (lambdas[i + 1] - lambdas[i]);
+    return Lerp(t, values[i], values[i + 1]);
 }
 
 Float PiecewiseLinearSpectrum::MaxValue() const {

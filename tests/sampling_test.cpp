@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -221,4 +222,28 @@ TEST(RNG, UniformRangeAndMean) {
     // The standard deviation of a mean of n uniforms is 1 / sqrt(12 n) = 2.9e-4.
     EXPECT_NEAR(sumF / n, 0.5, 1.5e-3);
     EXPECT_NEAR(sumD / n, 0.5, 1.5e-3);
+}
+
+// FindInterval is the largest i in [0, size - 2] with pred(i), clamped, for every table size
+// and every split point of a monotone predicate (all true and all false included): checked
+// against std::partition_point, which the branch-free bisection must agree with exactly. It
+// asks pred only of indices inside the table.
+TEST(FindInterval, AgreesWithPartitionPointForEverySizeAndSplit) {
+    for (int size = 2; size <= 70; ++size) {
+        std::vector<int> indices(static_cast<size_t>(size));
+        for (int i = 0; i < size; ++i) indices[size_t(i)] = i;
+        for (int split = 0; split <= size; ++split) {
+            auto below = [&](int i) { return i < split; };
+            int firstFalse = int(std::partition_point(indices.begin() + 1, indices.end() - 1, below) -
+                                 indices.begin());
+            int asked = 0;
+            int found = detail::FindInterval(size, [&](int i) {
+                EXPECT_TRUE(i >= 0 && i < size) << i;
+                ++asked;
+                return below(i);
+            });
+            EXPECT_EQ(found, Clamp(firstFalse - 1, 0, size - 2)) << "size " << size << " split " << split;
+            EXPECT_LE(asked, int(std::ceil(std::log2(double(size)))) + 1);
+        }
+    }
 }

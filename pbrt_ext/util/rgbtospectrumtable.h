@@ -88,17 +88,9 @@ class RGBToSpectrumTable {
     std::string ToString() const { return "[ RGBToSpectrumTable res: " + std::to_string(res) + " ]"; }
 
   private:
-    // The largest zi in [0, res - 2] with zNodes[zi] < z (pbrt-v4's FindInterval), by bisection.
+    // The largest zi in [0, res - 2] with zNodes[zi] < z (zNodes[0] = 0 < z).
     PBRT_CPU_GPU int ZInterval(Float z) const {
-        int lo = 0, hi = res - 2;  // zNodes[0] = 0 < z
-        while (lo < hi) {
-            int mid = (lo + hi + 1) / 2;
-            if (zNodes[mid] < z)
-                lo = mid;
-            else
-                hi = mid - 1;
-        }
-        return lo;
+        return detail::FindInterval(res, [&](int i) { return zNodes[i] < z; });
     }
 
     const float *zNodes;

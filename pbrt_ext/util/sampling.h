@@ -182,7 +182,6 @@ PBRT_CPU_GPU inline Float BilinearPDF(Point2f p, const std::array<Float, 4> &w) 
     return 4 * bilerp / sum;
 }
 
-
 // Barycentrics uniform over a triangle. The map folds the unit square onto the triangle
 // along its diagonal without the square root of the classic warp, so neighbouring u stay
 // neighbours (pbrt-v4, after Heitz's "A low-distortion map between triangle and square").
@@ -204,26 +203,6 @@ PBRT_CPU_GPU inline Point2f InvertUniformTriangleSample(const std::array<Float, 
         return Point2f(b[0] + b[1], 2 * b[1]);
     return Point2f(2 * b[0], b[1] + b[0]);
 }
-
-// The largest index i in [0, size - 2] with pred(i) true, for a predicate that is true
-// up to some index and false after it (pbrt-v4's FindInterval): a bisection that clamps,
-// so callers can index i and i + 1 even when u is outside the tabulated range.
-namespace detail {
-template <typename Predicate>
-PBRT_CPU_GPU inline int FindInterval(int size, const Predicate &pred) {
-    int first = 1, count = size - 2;
-    while (count > 0) {
-        int half = count >> 1, middle = first + half;
-        if (pred(middle)) {
-            first = middle + 1;
-            count -= half + 1;
-        } else {
-            count = half;
-        }
-    }
-    return Clamp(first - 1, 0, size - 2);
-}
-}  // namespace detail
 
 // A piecewise-constant density on [min, max] proportional to |f| over n equal pieces
 // (pbrt-v4's PiecewiseConstant1D). Sampling inverts the tabulated CDF, so it is exact and
