@@ -51,6 +51,23 @@ struct LightBounds {
     std::string ToString() const;
 };
 
+// What a light without bounds (distant, infinite) gives a surface, in the units of
+// LightBounds::Importance, so that the BVH light sampler can weigh it against its tree: pi
+// times irradiance, which is what Importance gives for a small area light (phi = pi L area). A
+// distant light's irradiance is its radiance times the cosine to its direction; an infinite
+// light's, averaged over the orientations of the surface, is pi times its mean radiance.
+struct UnboundedLightImportance {
+    Float irradiance = 0;  // a distant light's at normal incidence; an infinite light's average
+    Vector3f w;            // unit, toward a distant light; zero for an infinite light
+
+    // At a surface of normal n (zero n for a point in a medium); either side, as Importance.
+    Float Importance(Normal3f n) const {
+        if (w == Vector3f(0, 0, 0) || n == Normal3f(0, 0, 0))
+            return Pi * irradiance;
+        return Pi * irradiance * AbsDot(w, Vector3f(n));
+    }
+};
+
 // Bounds of both; bounds without power leave the other unchanged.
 LightBounds Union(const LightBounds &a, const LightBounds &b);
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <numeric>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -305,6 +306,10 @@ std::vector<Float> SamplingFunction(const Image &image) {
 
 // pbrt-v4's compensation: subtract the average and clamp; a constant image keeps its
 // (uniform) density, since nothing would be left to sample.
+Float Mean(const std::vector<Float> &f) {
+    return Float(std::accumulate(f.begin(), f.end(), 0.0) / double(f.size()));
+}
+
 std::vector<Float> Compensated(std::vector<Float> f) {
     double sum = 0;
     for (Float v : f)
@@ -338,6 +343,7 @@ ImageInfiniteLight::ImageInfiniteLight(const Transform &worldFromLight, Image im
       colorSpace(colorSpace ? colorSpace : &RGBColorSpace::sRGB()), scale(scale) {
     Point2i res = this->image.Resolution();
     std::vector<Float> f = SamplingFunction(this->image);
+    meanChannel = Mean(f);
     distribution = PiecewiseConstant2D(f, res.x, res.y);
     compensatedDistribution = PiecewiseConstant2D(Compensated(std::move(f)), res.x, res.y);
 }

@@ -7,9 +7,9 @@
 namespace pbrt {
 
 std::optional<std::string> LightSamplerNameError(const std::string &name) {
-    if (name == "bvh" || name == "power" || name == "uniform")
+    if (name == "bvh" || name == "bvh-pbrt-v4" || name == "power" || name == "uniform")
         return std::nullopt;
-    return "unknown light sampler \"" + name + "\": expected bvh, power or uniform";
+    return "unknown light sampler \"" + name + "\": expected bvh, bvh-pbrt-v4, power or uniform";
 }
 
 pstd::optional<SampledLight> UniformLightSampler::Sample(Float u) const {
@@ -88,12 +88,14 @@ Float SplitCost(const LightBounds &b, const Bounds3f &parent, int dim) {
 
 }  // namespace
 
-BVHLightSampler::BVHLightSampler(pstd::span<const Light> lights) : lightToBitTrail(lights.size()) {
+BVHLightSampler::BVHLightSampler(pstd::span<const Light> lights, InfiniteLightChoice infiniteChoice,
+                                 bool allowIncompletePDF)
+    : infiniteChoice(infiniteChoice), lightToBitTrail(lights.size()) {
     std::vector<BoundedLight> bounded;
     for (size_t i = 0; i < lights.size(); ++i) {
         pstd::optional<LightBounds> b = lights[i].Bounds();
         if (!b)
-            infiniteLights.push_back(int(i));
+            infiniteLights.push_back({int(i), lights[i].Importance(allowIncompletePDF)});
         else if (b->phi > 0)
             bounded.push_back({int(i), *b});
     }
@@ -174,32 +176,54 @@ BVHLightSampler::Children BVHLightSampler::ChildrenAt(int nodeIndex,
     return c;
 }
 
-Float BVHLightSampler::PInfinite() const {
-    Float nInfinite = Float(infiniteLights.size());
-    return nInfinite / (nInfinite + (nodes.empty() ? 0 : 1));
+Float BVHLightSampler::TreeWeight(const LightSampleContext &ctx) const {
+    if (nodes.empty())
+        return 0;
+    // Without lights outside the tree, its weight does not matter: it is chosen with
+    // probability 1 (the root's importance over itself, to the last bit).
+    if (infiniteChoice == InfiniteLightChoice::PbrtV4 || infiniteLights.empty())
+        return 1;
+    return nodes[0].Importance(ctx);
+}
+
+Float BVHLightSampler::WeightTotal(const LightSampleContext &ctx, Float treeWeight) const {
+    Float total = treeWeight;
+    for (size_t i = 0; i < infiniteLights.size(); ++i)
+        total += InfiniteWeight(i, ctx);
+    return total;
 }
 
 pstd::optional<SampledLight> BVHLightSampler::Sample(const LightSampleContext &ctx,
                                                      Float u) const {
-    Float pInfinite = PInfinite();
-    if (u < pInfinite) {
-        int n = int(infiniteLights.size());
-        int index = std::min(int(u / pInfinite * n), n - 1);
-        return SampledLight{infiniteLights[index], pInfinite / n};
-    }
-    if (nodes.empty())
+    // The first choice, by the weights' running sum: a light without bounds, or the tree.
+    Float treeWeight = TreeWeight(ctx), total = WeightTotal(ctx, treeWeight);
+    if (!(total > 0))
         return {};
-    u = std::min((u - pInfinite) / (1 - pInfinite), OneMinusEpsilon);
+    Float uWeight = u * total;
+    int lastWeighted = -1;
+    for (size_t i = 0; i < infiniteLights.size(); ++i) {
+        Float w = InfiniteWeight(i, ctx);
+        if (uWeight < w)
+            return SampledLight{infiniteLights[i].lightIndex, w / total};
+        uWeight -= w;
+        if (w > 0)
+            lastWeighted = int(i);
+    }
+    // Rounding can carry uWeight past the last light's weight where the tree's is zero.
+    if (treeWeight == 0)
+        return SampledLight{infiniteLights[size_t(lastWeighted)].lightIndex,
+                            InfiniteWeight(size_t(lastWeighted), ctx) / total};
+    u = std::min(uWeight / treeWeight, OneMinusEpsilon);
     int nodeIndex = 0;
-    Float pmf = 1 - pInfinite;
+    Float pmf = treeWeight / total;
     while (!nodes[nodeIndex].isLeaf) {
         Children c = ChildrenAt(nodeIndex, ctx);
-        Float total = c.importance[0] + c.importance[1];
-        if (total == 0)
+        Float sum = c.importance[0] + c.importance[1];
+        if (sum == 0)
             return {};
-        Float p0 = c.importance[0] / total;
+        Float p0 = c.importance[0] / sum;
         int child = u < p0 ? 0 : 1;
-        pmf *= c.importance[child] / total;  // as PMF computes it, to the last bit
+        pmf *= c.importance[child] / sum;  // as PMF computes it, to the last bit
         u = std::min(child == 0 ? u / p0 : (u - p0) / (1 - p0), OneMinusEpsilon);
         nodeIndex = c.index[child];
     }
@@ -211,14 +235,20 @@ pstd::optional<SampledLight> BVHLightSampler::Sample(const LightSampleContext &c
 Float BVHLightSampler::PMF(const LightSampleContext &ctx, int lightIndex) const {
     bool inTree = lightIndex >= 0 && size_t(lightIndex) < lightToBitTrail.size() &&
                   lightToBitTrail[lightIndex];
+    Float treeWeight = TreeWeight(ctx), total = WeightTotal(ctx, treeWeight);
+    if (!(total > 0))
+        return 0;
     if (!inTree) {
-        bool infinite = std::find(infiniteLights.begin(), infiniteLights.end(), lightIndex) !=
-                        infiniteLights.end();
-        return infinite ? PInfinite() / Float(infiniteLights.size()) : 0;
+        for (size_t i = 0; i < infiniteLights.size(); ++i)
+            if (infiniteLights[i].lightIndex == lightIndex)
+                return InfiniteWeight(i, ctx) / total;
+        return 0;
     }
+    if (treeWeight == 0)
+        return 0;
     uint64_t bitTrail = *lightToBitTrail[lightIndex];
     int nodeIndex = 0;
-    Float pmf = 1 - PInfinite();
+    Float pmf = treeWeight / total;
     while (!nodes[nodeIndex].isLeaf) {
         Children c = ChildrenAt(nodeIndex, ctx);
         int child = int(bitTrail & 1);

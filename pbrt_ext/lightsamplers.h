@@ -66,17 +66,29 @@ class PowerLightSampler {
     PiecewiseConstant1D distribution;
 };
 
+// How the BVH light sampler's first choice, between each light without bounds and the tree
+// (as one), is made. pbrt-v4 makes them equally likely, so a weak distant light beside a bright
+// area light takes half of the samples. By importance, each is weighed by what it can give the
+// receiving point (UnboundedLightImportance, and the root's LightBounds::Importance): the same
+// expectation, and on pbrt-v4's killeroo scenes (a dim distant light beside a bright disk) half
+// the error (docs/benchmarks.md).
+enum class InfiniteLightChoice { Importance, PbrtV4 };
+
 // pbrt-v4's BVH light sampler (Conty Estevez and Kulla 2018, as pbrt-v4 builds it): the lights
 // with bounds sit in a binary tree of LightBounds; sampling descends from the root, choosing each
 // child with probability proportional to its importance at the receiving point, so that near,
 // bright, facing lights are chosen more. Lights without bounds (distant, infinite) are chosen
-// first, uniformly, with probability nInfinite / (nInfinite + 1 if the tree is not empty);
-// lights with no power are never chosen. Where a descent meets two children of importance 0 (no
-// light below them can reach the point, though their parent's looser bounds allowed it) nothing
-// is chosen, so the PMF sums to less than 1 there, as in pbrt-v4.
+// first, against the tree as a whole, as InfiniteLightChoice says; lights with no power are never
+// chosen. Where a descent meets two children of importance 0 (no light below them can reach the
+// point, though their parent's looser bounds allowed it) nothing is chosen, so the PMF sums to
+// less than 1 there, as in pbrt-v4.
 class BVHLightSampler {
   public:
-    explicit BVHLightSampler(pstd::span<const Light> lights);
+    // allowIncompletePDF: the integrators' SampleLi will ask for it (MIS), which changes what
+    // infinite lights can give (UnboundedLightImportance).
+    explicit BVHLightSampler(pstd::span<const Light> lights,
+                             InfiniteLightChoice infiniteChoice = InfiniteLightChoice::Importance,
+                             bool allowIncompletePDF = false);
 
     pstd::optional<SampledLight> Sample(const LightSampleContext &ctx, Float u) const;
     Float PMF(const LightSampleContext &ctx, int lightIndex) const;
@@ -105,8 +117,13 @@ class BVHLightSampler {
     // (bit d: the second child at depth d); returns its bounds.
     LightBounds Build(std::vector<BoundedLight> &lights, size_t begin, size_t end,
                       uint64_t bitTrail, int depth);
-    // The probability of choosing one of the lights without bounds.
-    Float PInfinite() const;
+    // The weights of the first choice at the receiving point: the i-th light without bounds's,
+    // the tree's, and the sum of all of them.
+    Float InfiniteWeight(size_t i, const LightSampleContext &ctx) const {
+        return infiniteChoice == InfiniteLightChoice::PbrtV4 ? 1 : infiniteLights[i].importance.Importance(ctx.n);
+    }
+    Float TreeWeight(const LightSampleContext &ctx) const;
+    Float WeightTotal(const LightSampleContext &ctx, Float treeWeight) const;
     // An interior node's two children (the next node, then the stored one) and their
     // importance at the receiving point: Sample and PMF descend by the same numbers.
     struct Children {
@@ -120,7 +137,12 @@ class BVHLightSampler {
         return nodeIndex == 0 && nodes[0].Importance(ctx) == 0;
     }
 
-    std::vector<int> infiniteLights;
+    struct UnboundedLight {
+        int lightIndex;
+        UnboundedLightImportance importance;
+    };
+    std::vector<UnboundedLight> infiniteLights;
+    InfiniteLightChoice infiniteChoice;
     std::vector<Node> nodes;
     // By light index: the bit trail of a light in the tree, none for the others.
     std::vector<std::optional<uint64_t>> lightToBitTrail;

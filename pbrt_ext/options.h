@@ -28,7 +28,7 @@ struct RenderOverrides {
     // Multiplies every displaced mesh's "edgelength" (pbrt-v4's --displacement-edge-scale; a
     // scene's Option "displacementedgescale" wins over it, as in pbrt-v4).
     Float displacementEdgeScale = 1;
-    std::optional<std::string> lightSampler;  // "bvh", "power" or "uniform", instead of the integrator's
+    std::optional<std::string> lightSampler;  // a LightSamplerNameError name, instead of the integrator's
     std::optional<std::string> sampler;      // a Sampler name (SamplerNameError), instead of the scene's
     // An integrator name (IntegratorNameError) instead of the scene's, with the scene's
     // "maxdepth" and none of its other parameters.

@@ -11,6 +11,7 @@
 #pragma once
 
 #include "pbrt_ext/interaction.h"
+#include "pbrt_ext/lightbounds.h"
 #include "pbrt_ext/lightsample.h"
 #include "pbrt_ext/ray.h"
 #include "pbrt_ext/util/bounds.h"
@@ -40,6 +41,8 @@ class PortalImageInfiniteLight {
     LightType Type() const { return LightType::Infinite; }
     void Preprocess(const Bounds3f &sceneBounds);
     SampledSpectrum Phi(const SampledWavelengths &lambda) const;
+    // As the whole environment's: the portal only lowers it.
+    UnboundedLightImportance Importance(bool) const { return {Pi * scale * meanChannel, {}}; }
     pstd::optional<LightLiSample> SampleLi(LightSampleContext ctx, Point2f u,
                                            const SampledWavelengths &lambda,
                                            bool allowIncompletePDF = false) const;
@@ -68,6 +71,7 @@ class PortalImageInfiniteLight {
     WindowedPiecewiseConstant2D distribution;
     Point3f sceneCenter;
     Float sceneRadius = 0;
+    Float meanChannel;  // the environment's, over all pixels and channels
 };
 
 }  // namespace pbrt

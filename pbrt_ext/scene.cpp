@@ -248,8 +248,14 @@ std::unique_ptr<Scene> SceneBuilder::Build() {
         scene->lightSampler = UniformLightSampler(scene->lights);
     else if (lightSamplerName == "power")
         scene->lightSampler = PowerLightSampler(scene->lights);
-    else
-        scene->lightSampler = BVHLightSampler(scene->lights);
+    else {
+        // Without MIS, lights must give complete densities. (volpath and sppm weigh with BSDF
+        // sampling whatever the strategy; their infinite lights are then merely chosen more.)
+        bool allowIncompletePDF = integratorOptions.strategy == PathStrategy::MIS;
+        InfiniteLightChoice choice = lightSamplerName == "bvh-pbrt-v4" ? InfiniteLightChoice::PbrtV4
+                                                                        : InfiniteLightChoice::Importance;
+        scene->lightSampler = BVHLightSampler(scene->lights, choice, allowIncompletePDF);
+    }
     scene->integratorOptions = integratorOptions;
     return std::move(scene);
 }

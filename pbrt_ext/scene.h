@@ -25,8 +25,9 @@
 
 namespace pbrt {
 
-// The light sampler a scene uses: pbrt-v4's "bvh" (default), "power" or "uniform". Probabilities
-// are those at the receiving point ctx (only the BVH sampler's depend on it).
+// The light sampler a scene uses: "bvh" (default; pbrt-v4's but for its InfiniteLightChoice),
+// "power" or "uniform". Probabilities are those at the receiving point ctx (only the BVH
+// sampler's depend on it).
 class LightSampler {
   public:
     using Variant = std::variant<BVHLightSampler, PowerLightSampler, UniformLightSampler>;
@@ -206,7 +207,8 @@ class SceneBuilder {
     void SetCameraMedium(int medium);
 
     void SetIntegrator(PathIntegratorOptions options) { integratorOptions = options; }
-    void SetLightSampler(std::string name);  // "bvh" (default), "power" or "uniform"
+    // "bvh" (default), "bvh-pbrt-v4" (InfiniteLightChoice::PbrtV4), "power" or "uniform".
+    void SetLightSampler(std::string name);
 
     // Ray differentials are generated when a material's bump map asks for them (Build() sees
     // those) or a texture filters over the pixel's footprint (its creator says so here).

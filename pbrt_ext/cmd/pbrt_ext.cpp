@@ -100,8 +100,11 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
                    "multiply the \"edgelength\" of every displaced mesh by this; a scene's Option "
                    "\"displacementedgescale\" wins over it, as in pbrt-v4 (default: 1)");
     app.add_option("--light-sampler", o.lightSampler,
-                   "bvh, power or uniform: how next-event estimation picks a light (default: "
-                   "the integrator's \"lightsampler\", bvh unless it says)")
+                   "bvh, bvh-pbrt-v4, power or uniform: how next-event estimation picks a light; "
+                   "bvh weighs distant and infinite lights against the others by what they can "
+                   "give the point, bvh-pbrt-v4 picks them as often as all the others together, "
+                   "as pbrt-v4 does (default: the integrator's \"lightsampler\", bvh unless it "
+                   "says)")
         ->check([](const std::string &name) { return LightSamplerNameError(name).value_or(""); });
     app.add_option("--sampler", o.sampler,
                    "zsobol, halton, sobol, paddedsobol, stratified or independent: the sample "
