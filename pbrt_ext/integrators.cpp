@@ -7,6 +7,14 @@
 
 namespace pbrt {
 
+PathIntegrator::PathIntegrator(const Scene &scene, PathIntegratorOptions options)
+    : scene(scene), options(options) {
+    if (options.strategy != PathStrategy::MIS && scene.lightSampler.NeedsIncompletePDFs())
+        throw std::invalid_argument("the " + ToString(options.strategy) +
+                                    " strategy needs a scene built for it: its light sampler "
+                                    "leaves the uniform sky to MIS's BSDF sampling");
+}
+
 std::string ToString(PathStrategy strategy) {
     switch (strategy) {
     case PathStrategy::MIS:

@@ -63,8 +63,9 @@ struct RayCounts {
 
 class PathIntegrator {
   public:
-    PathIntegrator(const Scene &scene, PathIntegratorOptions options)
-        : scene(scene), options(options) {}
+    // Throws std::invalid_argument for a strategy without MIS on a scene whose light sampler
+    // was built for MIS and leaves lights to BSDF sampling (LightSampler::NeedsIncompletePDFs).
+    PathIntegrator(const Scene &scene, PathIntegratorOptions options);
 
     // Radiance arriving along ray (from its origin's point of view) at the wavelengths lambda,
     // whose secondary wavelengths a dispersive surface may terminate.

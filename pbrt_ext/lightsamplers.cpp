@@ -94,8 +94,12 @@ BVHLightSampler::BVHLightSampler(pstd::span<const Light> lights, InfiniteLightCh
     std::vector<BoundedLight> bounded;
     for (size_t i = 0; i < lights.size(); ++i) {
         pstd::optional<LightBounds> b = lights[i].Bounds();
-        if (!b)
-            infiniteLights.push_back({int(i), lights[i].Importance(allowIncompletePDF)});
+        if (!b) {
+            UnboundedLightImportance importance = lights[i].Importance(allowIncompletePDF);
+            infiniteLights.push_back({int(i), importance});
+            needsIncompletePDFs |= infiniteChoice == InfiniteLightChoice::Importance &&
+                                   importance.irradiance == 0 && lights[i].Importance(false).irradiance > 0;
+        }
         else if (b->phi > 0)
             bounded.push_back({int(i), *b});
     }

@@ -40,6 +40,7 @@ class UniformLightSampler {
         return Sample(u);
     }
     Float PMF(const LightSampleContext &, int lightIndex) const { return PMF(lightIndex); }
+    bool NeedsIncompletePDFs() const { return false; }
     std::string ToString() const;
 
   private:
@@ -59,6 +60,7 @@ class PowerLightSampler {
         return Sample(u);
     }
     Float PMF(const LightSampleContext &, int lightIndex) const { return PMF(lightIndex); }
+    bool NeedsIncompletePDFs() const { return false; }
     std::string ToString() const;
 
   private:
@@ -92,6 +94,10 @@ class BVHLightSampler {
 
     pstd::optional<SampledLight> Sample(const LightSampleContext &ctx, Float u) const;
     Float PMF(const LightSampleContext &ctx, int lightIndex) const;
+    // Whether built for MIS (allowIncompletePDF) with a light that is then never chosen though
+    // complete densities would need it (a uniform sky): an integrator without MIS must not use
+    // this sampler.
+    bool NeedsIncompletePDFs() const { return needsIncompletePDFs; }
     std::string ToString() const;
 
   private:
@@ -143,6 +149,7 @@ class BVHLightSampler {
     };
     std::vector<UnboundedLight> infiniteLights;
     InfiniteLightChoice infiniteChoice;
+    bool needsIncompletePDFs = false;
     std::vector<Node> nodes;
     // By light index: the bit trail of a light in the tree, none for the others.
     std::vector<std::optional<uint64_t>> lightToBitTrail;

@@ -40,6 +40,9 @@ class LightSampler {
     Float PMF(const LightSampleContext &ctx, int lightIndex) const {
         return std::visit([&](const auto &s) { return s.PMF(ctx, lightIndex); }, sampler);
     }
+    bool NeedsIncompletePDFs() const {
+        return std::visit([](const auto &s) { return s.NeedsIncompletePDFs(); }, sampler);
+    }
 
   private:
     Variant sampler;

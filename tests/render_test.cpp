@@ -222,23 +222,67 @@ double CornerViewFactor(double a, double b, double h) {
     return (X / x * std::atan(Y / x) + Y / y * std::atan(X / y)) / (2 * M_PI);
 }
 
+// A diffuse plane of reflectance R at z = 0 and, 0.5 above the origin, a 2 x 2 emitter of
+// radiance Le facing down.
+void AddPlaneUnderEmitter(SceneBuilder &builder, Float R, Float Le) {
+    builder.AddTriangleMesh(Rectangle(-20, 20, -20, 20, 0),
+                            builder.AddMaterial(DiffuseMaterial{Spectrum(R)}));
+    int black = builder.AddMaterial(DiffuseMaterial{Spectrum(0.f)});
+    builder.AddTriangleMesh(Rectangle(-1, 1, -1, 1, 0.5f, true), black,
+                            AreaLightDescription{Spectrum(Le), 1, false});
+}
+
 TEST(RenderDirect, DiffusePointUnderRectangularEmitterIsReflectanceTimesViewFactor) {
     // A 2 x 2 emitter 0.5 above the point: E = π Le F, Lo = R E / π = R Le F, F from four corner
     // rectangles of 1 x 1. Close and large, both estimators carry weight: MIS must split it right.
     constexpr Float R = 0.7f, Le = 2;
     SceneBuilder builder(LookingAt(Point3f(0, 0, 4), Point3f(0, 0, 0), 20, Point2i(4, 4)),
                          BoxFilteredFilm(Point2i(4, 4)), IndependentSampler(1));
-    builder.AddTriangleMesh(Rectangle(-20, 20, -20, 20, 0),
-                            builder.AddMaterial(DiffuseMaterial{Spectrum(R)}));
-    int black = builder.AddMaterial(DiffuseMaterial{Spectrum(0.f)});
-    builder.AddTriangleMesh(Rectangle(-1, 1, -1, 1, 0.5f, true), black,
-                            AreaLightDescription{Spectrum(Le), 1, false});
+    AddPlaneUnderEmitter(builder, R, Le);
     auto scene = builder.Build();
     double expected = R * Le * 4 * CornerViewFactor(1, 1, 0.5);
     Ray down(Point3f(0, 0, 0.25f), Vector3f(0, 0, -1));
     for (PathStrategy strategy : kStrategies)
         ExpectNear(EstimateLi(*scene, {1, false, strategy}, down, 40000), expected,
                    "strategy " + ToString(strategy));
+}
+
+// The point of the test above under the same emitter, a uniform sky and a sun 75° off the normal
+// (it passes beside the emitter): Lo = R (Le F + Lsky (1 - F) + Lsun cos 75° / π), the sky seen
+// through all but the emitter's view factor F. Four lights, two of them without bounds: both ways
+// of choosing those against the tree (light sampler "bvh" and "bvh-pbrt-v4") must reach it, with
+// MIS (where the sky is left to BSDF sampling by "bvh") and with light sampling alone (the sun is
+// a delta light, which BSDF sampling alone cannot find).
+TEST(RenderDirect, DiffusePointUnderEmitterSkyAndSunForEitherChoiceOfInfiniteLights) {
+    constexpr Float R = 0.7f, Le = 2, Lsky = 0.4f, Lsun = 3, sunTheta = 75;
+    double F = 4 * CornerViewFactor(1, 1, 0.5);
+    double expected = R * (Le * F + Lsky * (1 - F) + Lsun * std::cos(Radians(sunTheta)) / Pi);
+    Ray down(Point3f(0, 0, 0.25f), Vector3f(0, 0, -1));
+    for (const char *lightSampler : {"bvh", "bvh-pbrt-v4"})
+        for (PathStrategy strategy : {PathStrategy::MIS, PathStrategy::Light}) {
+            SceneBuilder builder(LookingAt(Point3f(0, 0, 4), Point3f(0, 0, 0), 20, Point2i(4, 4)),
+                                 BoxFilteredFilm(Point2i(4, 4)), IndependentSampler(1));
+            AddPlaneUnderEmitter(builder, R, Le);
+            builder.AddLight(UniformInfiniteLight(Spectrum(Lsky), 1));
+            builder.AddLight(DistantLight(RotateX(sunTheta), Spectrum(Lsun), 1));
+            builder.SetLightSampler(lightSampler);
+            builder.SetIntegrator({1, false, strategy});
+            auto scene = builder.Build();
+            ExpectNear(EstimateLi(*scene, {1, false, strategy}, down, 40000), expected,
+                       std::string(lightSampler) + ", strategy " + ToString(strategy));
+        }
+}
+
+TEST(RenderDirect, LightSamplingAloneRefusesASceneBuiltForMISThatLeavesItsSkyToBSDFs) {
+    SceneBuilder builder(LookingAt(Point3f(0, 0, 4), Point3f(0, 0, 0), 20, Point2i(4, 4)),
+                         BoxFilteredFilm(Point2i(4, 4)), IndependentSampler(1));
+    builder.AddTriangleMesh(Rectangle(-20, 20, -20, 20, 0),
+                            builder.AddMaterial(DiffuseMaterial{Spectrum(0.5f)}));
+    builder.AddLight(UniformInfiniteLight(Spectrum(0.4f), 1));
+    builder.AddLight(DistantLight(Transform(), Spectrum(1.f), 1));
+    auto scene = builder.Build();  // for MIS, the default
+    EXPECT_NO_THROW(PathIntegrator(*scene, {1, false, PathStrategy::MIS}));
+    EXPECT_THROW(PathIntegrator(*scene, {1, false, PathStrategy::Light}), std::invalid_argument);
 }
 
 TEST(RenderStrategies, AgreeWithinNoiseWithAnAreaLightAndFabric) {
