@@ -142,16 +142,14 @@ EmissionImage::EmissionImage(Image image, const RGBColorSpace *colorSpace)
     : image(std::move(image)), colorSpace(colorSpace) {
     Point2i res = this->image.Resolution();
     RGB lum = colorSpace->LuminanceVector();
-    double sum = 0, sumLuminance = 0;
+    double sumLuminance = 0;
     for (int y = 0; y < res.y; ++y)
         for (int x = 0; x < res.x; ++x) {
             RGB rgb = this->image.GetChannels(Point2i(x, y));
-            sum += rgb.Average();
             sumLuminance += lum.r * rgb.r + lum.g * rgb.g + lum.b * rgb.b;
         }
-    double n = double(res.x) * res.y;
-    meanChannel = Float(sum / n);
-    meanLuminance = Float(sumLuminance / n);
+    meanChannel = this->image.MeanChannel();
+    meanLuminance = Float(sumLuminance / (double(res.x) * res.y));
 }
 
 RGB EmissionImage::Lookup(Point2f uv) const {
@@ -304,17 +302,14 @@ std::vector<Float> SamplingFunction(const Image &image) {
     return f;
 }
 
-// pbrt-v4's compensation: subtract the average and clamp; a constant image keeps its
-// (uniform) density, since nothing would be left to sample.
 Float Mean(const std::vector<Float> &f) {
     return Float(std::accumulate(f.begin(), f.end(), 0.0) / double(f.size()));
 }
 
+// pbrt-v4's compensation: subtract the average and clamp; a constant image keeps its
+// (uniform) density, since nothing would be left to sample.
 std::vector<Float> Compensated(std::vector<Float> f) {
-    double sum = 0;
-    for (Float v : f)
-        sum += v;
-    Float average = Float(sum / f.size());
+    Float average = Mean(f);
     bool allZero = true;
     for (Float &v : f) {
         v = std::max<Float>(v - average, 0);

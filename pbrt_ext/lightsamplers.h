@@ -126,7 +126,9 @@ class BVHLightSampler {
     // The weights of the first choice at the receiving point: the i-th light without bounds's,
     // the tree's, and the sum of all of them.
     Float InfiniteWeight(size_t i, const LightSampleContext &ctx) const {
-        return infiniteChoice == InfiniteLightChoice::PbrtV4 ? 1 : infiniteLights[i].importance.Importance(ctx.n);
+        return infiniteChoice == InfiniteLightChoice::PbrtV4
+                   ? 1
+                   : infiniteLights[i].importance.Importance(ctx.n);
     }
     Float TreeWeight(const LightSampleContext &ctx) const;
     Float WeightTotal(const LightSampleContext &ctx, Float treeWeight) const;

@@ -8,7 +8,6 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
-#include <numeric>
 
 namespace pbrt {
 
@@ -70,9 +69,7 @@ PortalImageInfiniteLight::PortalImageInfiniteLight(const Transform &worldFromLig
         }
     });
     distribution = WindowedPiecewiseConstant2D(SamplingFunction(image, dwduv), res.x, res.y);
-    std::vector<Float> channelMeans = equalAreaImage.GetSamplingDistribution();
-    meanChannel = Float(std::accumulate(channelMeans.begin(), channelMeans.end(), 0.0) /
-                        double(channelMeans.size()));
+    meanChannel = equalAreaImage.MeanChannel();
 }
 
 void PortalImageInfiniteLight::Preprocess(const Bounds3f &sceneBounds) {

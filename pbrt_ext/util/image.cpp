@@ -125,6 +125,14 @@ std::vector<Float> Image::GetSamplingDistribution() const {
     return f;
 }
 
+Float Image::MeanChannel() const {
+    double sum = 0;
+    for (int y = 0; y < resolution.y; ++y)
+        for (int x = 0; x < resolution.x; ++x)
+            sum += GetChannels(Point2i(x, y)).Average();
+    return Float(sum / (double(resolution.x) * resolution.y));
+}
+
 std::optional<ColorEncoding> ColorEncoding::Get(const std::string &name) {
     if (name == "linear") return Linear();
     if (name == "sRGB") return SRGB();

@@ -229,6 +229,8 @@ class Image {
     // image light's PiecewiseConstant2D samples, as pbrt-v4's GetSamplingDistribution for an
     // equal-area parameterization.
     std::vector<Float> GetSamplingDistribution() const;
+    // The mean of GetSamplingDistribution(): over all pixels, of their channels' average.
+    Float MeanChannel() const;
 
     // pbrt-v4's resampling (util/imageresample.cpp). FloatResizeUp enlarges the image to
     // newResolution (no smaller on either axis) with a separable Lanczos filter of radius 2,
