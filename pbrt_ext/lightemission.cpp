@@ -188,11 +188,11 @@ pstd::optional<LightLeSample> DiffuseAreaLight::SampleLe(Point2f u1, Point2f u2,
     }
     if (pdfDir == 0)
         return {};
-    SurfaceInteraction &intr = ss->intr;
-    intr.time = time;
-    w = Frame::FromZ(intr.n).FromLocal(w);
-    return LightLeSample{L(intr.p, intr.n, intr.uv, w, lambda), intr.SpawnRay(w), intr.n, intr.uv,
-                         ss->pdf, pdfDir};
+    const ShapeSamplePoint &pt = ss->intr;
+    w = Frame::FromZ(pt.n).FromLocal(w);
+    // No medium: the caller knows the light's (MediumInterface's default).
+    Ray ray(OffsetRayOrigin(pt.p, pt.n, w), w, -1, time);
+    return LightLeSample{L(pt.p, pt.n, pt.uv, w, lambda), ray, pt.n, pt.uv, ss->pdf, pdfDir};
 }
 
 LightLePDF DiffuseAreaLight::PDF_Le(Point3f p, Normal3f n, Point2f uv, Vector3f w) const {

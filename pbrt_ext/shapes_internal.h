@@ -101,11 +101,7 @@ inline Float AreaScale(const Transform &t, Float absDet, Normal3f unitNormal) {
 
 // A point sampled on a shape, as ShapeSample carries it.
 inline ShapeSample MakeSample(Point3f p, Normal3f n, Point2f uv, Float pdf) {
-    SurfaceInteraction si;
-    si.p = p;
-    si.n = si.shading.n = n;
-    si.uv = uv;
-    return ShapeSample{si, pdf};
+    return ShapeSample{{p, n, uv}, pdf};
 }
 
 inline Ray SpawnRay(const ShapeSampleContext &ctx, Vector3f w) {
