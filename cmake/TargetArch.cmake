@@ -40,8 +40,8 @@ int main() {
                    __builtin_cpu_supports("bmi2") ? 0 : 1;
 }
 ]=])
-  try_run(runs compiles ${CMAKE_CURRENT_BINARY_DIR}/CMakeFiles/cpu_has_x86_64_v3 ${probe})
-  if(compiles AND runs EQUAL 0)
+  try_run(PBRT_EXT_X86_64_V3_RUNS PBRT_EXT_X86_64_V3_COMPILES ${CMAKE_CURRENT_BINARY_DIR}/CMakeFiles/cpu_has_x86_64_v3 ${probe})
+  if(PBRT_EXT_X86_64_V3_COMPILES AND PBRT_EXT_X86_64_V3_RUNS EQUAL 0)
     set(${out} "x86-64-v3" PARENT_SCOPE)
   endif()
 endfunction()
