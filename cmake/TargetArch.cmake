@@ -18,8 +18,23 @@ set(PBRT_EXT_TARGET_ARCH "auto" CACHE STRING
 
 add_compile_options(-ffp-contract=off)
 
+include(CheckCXXCompilerFlag)
+
 function(pbrt_ext_resolve_target_arch out)
+  if(PBRT_EXT_TARGET_ARCH STREQUAL "none")
+    set(${out} "none" PARENT_SCOPE)
+    return()
+  endif()
   if(NOT PBRT_EXT_TARGET_ARCH STREQUAL "auto")
+    # A value the compiler rejects fails here, naming the option, not at the first compile.
+    check_cxx_compiler_flag(-march=${PBRT_EXT_TARGET_ARCH} PBRT_EXT_COMPILER_HAS_TARGET_ARCH)
+    if(NOT PBRT_EXT_COMPILER_HAS_TARGET_ARCH)
+      unset(PBRT_EXT_COMPILER_HAS_TARGET_ARCH CACHE)
+      message(FATAL_ERROR "PBRT_EXT_TARGET_ARCH=${PBRT_EXT_TARGET_ARCH}: ${CMAKE_CXX_COMPILER} "
+                          "does not accept -march=${PBRT_EXT_TARGET_ARCH} (use auto, none or a "
+                          "-march value it knows)")
+    endif()
+    unset(PBRT_EXT_COMPILER_HAS_TARGET_ARCH CACHE)
     set(${out} "${PBRT_EXT_TARGET_ARCH}" PARENT_SCOPE)
     return()
   endif()
@@ -27,7 +42,6 @@ function(pbrt_ext_resolve_target_arch out)
   if(NOT CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64)$" OR CMAKE_CROSSCOMPILING)
     return()
   endif()
-  include(CheckCXXCompilerFlag)
   check_cxx_compiler_flag(-march=x86-64-v3 PBRT_EXT_COMPILER_HAS_X86_64_V3)
   if(NOT PBRT_EXT_COMPILER_HAS_X86_64_V3)
     return()
