@@ -135,8 +135,12 @@ Spectrum Spectrum::DenselySampled(const Spectrum &s) {
 }
 
 Spectrum TabulatedForLookup(const Spectrum &s) {
-    if (s.IsConstant() || s.Get<std::shared_ptr<const DenselySampledSpectrum>>()) return s;
-    return Spectrum::DenselySampled(s);
+    if (s.IsConstant()) return s;
+    Spectrum table = s.Get<std::shared_ptr<const DenselySampledSpectrum>>() ? s : Spectrum::DenselySampled(s);
+    const std::vector<Float> &values = (*table.Get<std::shared_ptr<const DenselySampledSpectrum>>())->values;
+    bool flat = !values.empty() && std::all_of(values.begin(), values.end(),
+                                               [&](Float v) { return v == values.front(); });
+    return flat ? Spectrum(values.front()) : table;
 }
 
 std::string Spectrum::ToString() const {

@@ -173,7 +173,9 @@ class Spectrum {
 DenselySampledSpectrum DenselySample(const Spectrum &s);
 
 // s as a spectrum looked up many times (a light's emission): tabulated at 1 nm unless it is a
-// constant or already a table, which is then shared, not copied.
+// constant or already a table, which is then shared, not copied. A table with one value at
+// every wavelength becomes that constant (a grey medium's "rgb sigma_s [1 1 1]"): the same
+// value at every rendered wavelength without a lookup.
 Spectrum TabulatedForLookup(const Spectrum &s);
 
 // The CIE 1931 colour matching functions, densely sampled (CIE_Y_integral, the sum of Y at 1 nm

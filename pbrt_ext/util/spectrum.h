@@ -133,7 +133,11 @@ PBRT_CPU_GPU inline SampledSpectrum SafeDiv(SampledSpectrum a, const SampledSpec
 PBRT_CPU_GPU inline SampledSpectrum Sqrt(const SampledSpectrum &s) {
     return detail::Map(s, [](Float v) { return std::sqrt(v); });
 }
+// One exponential where every wavelength has the same value (a grey medium's optical depth),
+// which gives the same result as four.
 PBRT_CPU_GPU inline SampledSpectrum Exp(const SampledSpectrum &s) {
+    if (s[0] == s[1] && s[0] == s[2] && s[0] == s[3])
+        return SampledSpectrum(std::exp(s[0]));
     return detail::Map(s, [](Float v) { return std::exp(v); });
 }
 PBRT_CPU_GPU inline SampledSpectrum Pow(const SampledSpectrum &s, Float e) {
