@@ -22,10 +22,12 @@ using namespace shapedetail;
 namespace {
 
 // The roots t0 <= t1 of |o + t d|^2 = radius^2 over the first N coordinates (3: a sphere about
-// the origin; 2: a cylinder about z), in double, with the discriminant written as
-// 4a (r + l)(r - l), l the distance from the centre or axis to the ray's line: no cancellation
-// for rays far from the quadric (pbrt-v4 6.8.3). None where the line misses it, or has no
-// direction in those coordinates.
+// the origin; 2: a cylinder about z), in double. The discriminant is written as
+// 4 (a r^2 - |o x d|^2), |o x d|^2 / a the squared distance from the centre or axis to the ray's
+// line: the products of single-precision coordinates are exact in double, so there is no
+// cancellation for rays far from the quadric (pbrt-v4 6.8.3 gets the same from
+// 4a (r + l)(r - l), with a division and a square root more on the way to the roots). None where
+// the line misses it, or has no direction in those coordinates.
 template <int N>
 pstd::optional<std::array<double, 2>> CenteredQuadraticRoots(Point3f o, Vector3f d,
                                                              Float radius) {
@@ -35,14 +37,14 @@ pstd::optional<std::array<double, 2>> CenteredQuadraticRoots(Point3f o, Vector3f
         b += 2 * double(d[i]) * o[i];
         c += double(o[i]) * o[i];
     }
-    c -= double(radius) * radius;
+    double r2 = double(radius) * radius;
+    c -= r2;
     if (a == 0)
         return {};
-    double f = b / (2 * a), l2 = 0;
-    for (int i = 0; i < N; ++i)
-        l2 += Sqr(o[i] - f * d[i]);
-    double len = std::sqrt(l2);
-    double discrim = 4 * a * (radius + len) * (radius - len);
+    double cross2 = Sqr(double(o.x) * d.y - double(o.y) * d.x);
+    if constexpr (N == 3)
+        cross2 += Sqr(double(o.y) * d.z - double(o.z) * d.y) + Sqr(double(o.z) * d.x - double(o.x) * d.z);
+    double discrim = 4 * (a * r2 - cross2);
     if (discrim < 0)
         return {};
     double rootDiscrim = std::sqrt(discrim);
@@ -144,7 +146,7 @@ pstd::optional<QuadricIntersection> Sphere::BasicIntersect(const Ray &r, Float t
         if (pHit.x == 0 && pHit.y == 0)
             pHit.x = 1e-5f * radius;  // keeps phi and dp/du defined at the poles
         bool clipped = (zMin > -radius && pHit.z < zMin) || (zMax < radius && pHit.z > zMax) ||
-                       Azimuth(pHit.x, pHit.y) > phiMax;
+                       PastAzimuth(pHit, phiMax);
         if (!clipped)
             return QuadricIntersection{Float(t), pHit};
     }
@@ -438,7 +440,7 @@ pstd::optional<QuadricIntersection> Disk::BasicIntersect(const Ray &r, Float tMa
         return {};
     if (dist2 == 0)
         pHit.x = 1e-5f * radius;  // keeps phi and the tangents defined at the centre
-    if (Azimuth(pHit.x, pHit.y) > phiMax)
+    if (PastAzimuth(pHit, phiMax))
         return {};
     pHit.z = height;
     return QuadricIntersection{tShapeHit, pHit};

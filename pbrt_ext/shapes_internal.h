@@ -40,6 +40,12 @@ inline Float Azimuth(Float x, Float y) {
     return phi < 0 ? phi + 2 * Pi : phi;
 }
 
+// Whether p lies past a partial quadric's last azimuth. Azimuth() never exceeds 2 Pi, so a whole
+// one (phiMax >= 2 Pi) needs no arctangent.
+inline bool PastAzimuth(Point3f p, Float phiMax) {
+    return phiMax < 2 * Pi && Azimuth(p.x, p.y) > phiMax;
+}
+
 // pbrt-v4's SurfaceInteraction constructor: n from the parametric tangents, negated on request.
 inline SurfaceInteraction MakeInteraction(Point3f p, Point2f uv, Vector3f wo, Vector3f dpdu,
                                    Vector3f dpdv, bool flipNormal) {
