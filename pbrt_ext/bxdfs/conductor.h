@@ -43,14 +43,11 @@ class ConductorBxDF {
         // nonzero and wo + wi cannot vanish.
         if (!SameHemisphere(wo, wi) || mfDistrib.EffectivelySmooth())
             return SampledSpectrum(0.f);
-        Vector3f wm = Normalize(wi + wo);
-        SampledSpectrum F = FrComplex(AbsDot(wo, wm), eta, k);
-        return mfDistrib.D(wm) * F * mfDistrib.G(wo, wi) /
-               (4 * AbsCosTheta(wi) * AbsCosTheta(wo));
+        return FValue(wo, wi, FindMicrofacet(wo, wi));
     }
 
     PBRT_CPU_GPU pstd::optional<BSDFSample> Sample_f(
-        Vector3f wo, Float /*uc*/, Point2f u, TransportMode mode,
+        Vector3f wo, Float /*uc*/, Point2f u, TransportMode /*mode*/,
         BxDFReflTransFlags sampleFlags = BxDFReflTransFlags::All) const {
         // A direction in the tangent plane has no hemisphere to reflect into (and the
         // mirror's f would divide by its zero cosine).
@@ -72,8 +69,8 @@ class ConductorBxDF {
         // Evaluated at the half vector of (wo, wi), not at the sampled wm: the two differ
         // by rounding, and narrow lobes are steep enough that Sample_f() would otherwise
         // disagree with f() and PDF() in the fourth digit.
-        return BSDFSample(f(wo, wi, mode), wi, PDF(wo, wi, mode, sampleFlags),
-                          BxDFFlags::GlossyReflection);
+        Microfacet m = FindMicrofacet(wo, wi);
+        return BSDFSample(FValue(wo, wi, m), wi, PDFValue(wo, m), BxDFFlags::GlossyReflection);
     }
 
     PBRT_CPU_GPU Float PDF(Vector3f wo, Vector3f wi, TransportMode /*mode*/,
@@ -81,10 +78,7 @@ class ConductorBxDF {
         if (!(sampleFlags & BxDFReflTransFlags::Reflection) || !SameHemisphere(wo, wi) ||
             mfDistrib.EffectivelySmooth())
             return 0;
-        // Take the half vector on the normal's side, where Sample_wm() returns it.
-        Vector3f wm = FaceForward(Normalize(wo + wi), Vector3f(0, 0, 1));
-        // Jacobian of the half-vector reflection: d wm / d wi = 1 / (4 |wo . wm|).
-        return mfDistrib.PDF(wo, wm) / (4 * AbsDot(wo, wm));
+        return PDFValue(wo, FindMicrofacet(wo, wi));
     }
 
     PBRT_CPU_GPU SampledSpectrum rho(Vector3f wo, pstd::span<const Float> uc,
@@ -109,6 +103,26 @@ class ConductorBxDF {
     }
 
   private:
+    // What f() and PDF() share at a pair of directions in one hemisphere, computed once when
+    // Sample_f() needs both: the half vector on the normal's side (where Sample_wm() returns
+    // it; D and |wo . wm| do not depend on the side), its density and Lambda(wo).
+    struct Microfacet {
+        Vector3f wm;
+        Float D, lambda_o;
+    };
+    PBRT_CPU_GPU Microfacet FindMicrofacet(Vector3f wo, Vector3f wi) const {
+        Vector3f wm = FaceForward(Normalize(wo + wi), Vector3f(0, 0, 1));
+        return {wm, mfDistrib.D(wm), mfDistrib.Lambda(wo)};
+    }
+    PBRT_CPU_GPU SampledSpectrum FValue(Vector3f wo, Vector3f wi, const Microfacet &m) const {
+        SampledSpectrum F = FrComplex(AbsDot(wo, m.wm), eta, k);
+        return m.D * F * mfDistrib.G(m.lambda_o, wi) / (4 * AbsCosTheta(wi) * AbsCosTheta(wo));
+    }
+    // Jacobian of the half-vector reflection: d wm / d wi = 1 / (4 |wo . wm|).
+    PBRT_CPU_GPU Float PDFValue(Vector3f wo, const Microfacet &m) const {
+        return mfDistrib.PDF(wo, m.lambda_o, m.wm, m.D) / (4 * AbsDot(wo, m.wm));
+    }
+
     TrowbridgeReitzDistribution mfDistrib;
     SampledSpectrum eta, k;
 };

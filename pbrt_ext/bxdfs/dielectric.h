@@ -116,10 +116,11 @@ class DielectricBxDF {
     PBRT_CPU_GPU pstd::optional<HalfVector> FindHalfVector(Vector3f wo, Vector3f wi) const;
 
     // What f() and PDF() both need at a pair of directions, computed once when Sample_f()
-    // needs both: the half vector, its Fresnel reflectance and its microfacet density.
+    // needs both: the half vector, its Fresnel reflectance, its microfacet density and the
+    // masking term Lambda(wo).
     struct Microfacet {
         HalfVector h;
-        Float F, D;
+        Float F, D, lambda_o;
     };
     PBRT_CPU_GPU pstd::optional<Microfacet> FindMicrofacet(Vector3f wo, Vector3f wi) const;
     PBRT_CPU_GPU Float FValue(Vector3f wo, Vector3f wi, TransportMode mode,
@@ -158,12 +159,13 @@ PBRT_CPU_GPU inline pstd::optional<DielectricBxDF::Microfacet> DielectricBxDF::F
     pstd::optional<HalfVector> h = FindHalfVector(wo, wi);
     if (!h)
         return {};
-    return Microfacet{*h, FrDielectric(Dot(wo, h->wm), eta), mfDistrib.D(h->wm)};
+    return Microfacet{*h, FrDielectric(Dot(wo, h->wm), eta), mfDistrib.D(h->wm),
+                      mfDistrib.Lambda(wo)};
 }
 
 PBRT_CPU_GPU inline Float DielectricBxDF::FValue(Vector3f wo, Vector3f wi, TransportMode mode,
                                                  const Microfacet &m) const {
-    Float DG = m.D * mfDistrib.G(wo, wi);
+    Float DG = m.D * mfDistrib.G(m.lambda_o, wi);
     if (m.h.reflect)
         return DG * m.F / std::abs(4 * CosTheta(wi) * CosTheta(wo));
     Float denom =
@@ -181,7 +183,7 @@ PBRT_CPU_GPU inline Float DielectricBxDF::PDFValue(Vector3f wo, Vector3f wi,
     Float prReflect = ReflectionProbability(m.F, sampleFlags);
     if (prReflect < 0)
         return 0;
-    Float pdf_wm = mfDistrib.PDF(wo, m.h.wm, m.D);
+    Float pdf_wm = mfDistrib.PDF(wo, m.lambda_o, m.h.wm, m.D);
     if (m.h.reflect)
         // Jacobian of the reflection about wm: d wm / d wi = 1 / (4 |wo . wm|).
         return pdf_wm / (4 * AbsDot(wo, m.h.wm)) * prReflect;

@@ -185,8 +185,11 @@ class TrowbridgeReitzDistribution {
 
     // Height-correlated masking-shadowing: a microfacet hidden from wo tends to be hidden
     // from wi too, which the product G1(wo) G1(wi) would ignore.
-    PBRT_CPU_GPU Float G(Vector3f wo, Vector3f wi) const {
-        return 1 / (1 + Lambda(wo) + Lambda(wi));
+    PBRT_CPU_GPU Float G(Vector3f wo, Vector3f wi) const { return G(Lambda(wo), wi); }
+    // The same, for a caller that already has Lambda(wo) (BxDFs whose Sample_f() needs both
+    // G and the visible-normal density, which share it).
+    PBRT_CPU_GPU Float G(Float lambda_o, Vector3f wi) const {
+        return 1 / (1 + lambda_o + Lambda(wi));
     }
 
     // Distribution of normals visible from w; integrates to 1 over the wm facing w. As in
@@ -195,12 +198,19 @@ class TrowbridgeReitzDistribution {
     PBRT_CPU_GPU Float D(Vector3f w, Vector3f wm) const { return D(w, wm, D(wm)); }
     // The same, for a caller that already has D(wm).
     PBRT_CPU_GPU Float D(Vector3f w, Vector3f wm, Float Dwm) const {
-        return G1(w) / AbsCosTheta(w) * Dwm * AbsDot(w, wm);
+        return VisibleD(w, Lambda(w), wm, Dwm);
+    }
+    // The same, for a caller that also has Lambda(w).
+    PBRT_CPU_GPU Float VisibleD(Vector3f w, Float lambda_w, Vector3f wm, Float Dwm) const {
+        return 1 / (1 + lambda_w) / AbsCosTheta(w) * Dwm * AbsDot(w, wm);
     }
 
     // Sample_wm() draws exactly the visible-normal distribution.
     PBRT_CPU_GPU Float PDF(Vector3f w, Vector3f wm) const { return D(w, wm); }
     PBRT_CPU_GPU Float PDF(Vector3f w, Vector3f wm, Float Dwm) const { return D(w, wm, Dwm); }
+    PBRT_CPU_GPU Float PDF(Vector3f w, Float lambda_w, Vector3f wm, Float Dwm) const {
+        return VisibleD(w, lambda_w, wm, Dwm);
+    }
 
     // Samples a normal visible from w; it is always in the upper hemisphere (w below the
     // surface is mirrored first). Stretching by alpha turns the microsurface into a unit
