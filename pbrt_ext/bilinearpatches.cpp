@@ -242,12 +242,15 @@ pstd::optional<ShapeSample> BilinearPatch::SampleAt(Point2f uv) const {
 }
 
 // A rectangle's spherical rectangle from the receiver, or nothing where area sampling serves
-// (a patch that is not a rectangle or samples an emission image, or a solid angle outside
-// SampledBySolidAngle's range).
+// (a patch that is not a rectangle or samples an emission image, a rectangle that looks small
+// from p, or a solid angle outside SampledBySolidAngle's range).
 pstd::optional<SphericalRectangle> BilinearPatch::SphericalFrom(Point3f p) const {
     if (!isRectangle || mesh->imageDistribution)
         return {};
     auto [p00, p10, p01, p11] = Corners();
+    Point3f center = (p00 + p11) / 2;
+    if (SampledByAreaFrom(p, center, DistanceSquared(p00, center)))
+        return {};
     SphericalRectangle rectangle(p00, p10 - p00, p01 - p00, p);
     if (!SampledBySolidAngle(rectangle.Area()))
         return {};

@@ -226,8 +226,18 @@ pstd::optional<ShapeSample> Triangle::SampleAt(std::array<Float, 3> b, Float pdf
     return MakeSample(Interpolate(b, p0, p1, p2), n, Interpolate(b, uv[0], uv[1], uv[2]), pdf);
 }
 
+// Whether Sample(ctx, u) samples by area from p (SampledByAreaFrom, about the centroid).
+static bool SampledByAreaFrom(Point3f p, const std::array<Point3f, 3> &v) {
+    Point3f c = (v[0] + v[1] + v[2]) / 3;
+    Float radius2 = std::max({DistanceSquared(v[0], c), DistanceSquared(v[1], c), DistanceSquared(v[2], c)});
+    return shapedetail::SampledByAreaFrom(p, c, radius2);
+}
+
 pstd::optional<ShapeSample> Triangle::Sample(const ShapeSampleContext &ctx, Point2f u) const {
-    SphericalTriangle spherical(Vertices(mesh, triIndex), ctx.p);
+    std::array<Point3f, 3> v = Vertices(mesh, triIndex);
+    if (SampledByAreaFrom(ctx.p, v))
+        return SampleBySolidAngle(*this, ctx, u);
+    SphericalTriangle spherical(v, ctx.p);
     if (!SampledBySolidAngle(spherical.Area()))
         return SampleBySolidAngle(*this, ctx, u);
     Float pdf = 1 / spherical.Area();
@@ -250,7 +260,7 @@ Float Triangle::PDF(const ShapeSampleContext &ctx, Vector3f wi) const {
     if (!hit)
         return 0;
     SphericalTriangle spherical(v, ctx.p);
-    if (!SampledBySolidAngle(spherical.Area())) {
+    if (SampledByAreaFrom(ctx.p, v) || !SampledBySolidAngle(spherical.Area())) {
         Normal3f n(Cross(p1 - p0, p2 - p0));
         return AreaToSolidAngle(1 / Area(), ctx.p, Interpolate(hit->b, p0, p1, p2), Normalize(n), w);
     }

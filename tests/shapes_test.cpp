@@ -630,6 +630,11 @@ TEST(ShapeSampling, ChiSquare) {
          Normal3f(0, 0, -1)},
         {"rectangle, tilted receiver", [&] { return Shape(BilinearPatch(square.get(), 0)); },
          Point3f(1.4f, -0.3f, 0.5f), Normal3f(Normalize(Vector3f(-1, 0.4f, -0.5f)))},
+        // Both from far enough to look small (SampledByAreaFrom): by area, converted.
+        {"triangle, small from afar", [&] { return Shape(Triangle(mesh.get(), 0)); }, Point3f(-1, 0.5f, 2.5f),
+         Normal3f(0, 0, -1)},
+        {"rectangle, small from afar", [&] { return Shape(BilinearPatch(square.get(), 0)); },
+         Point3f(2, -1, 2.5f), Normal3f(0, 0, -1)},
 
         {"bilinear patch", [&] { return Shape(BilinearPatch(patch.get(), 0)); },
          Point3f(0.5f, 0.5f, 4)},
@@ -675,10 +680,13 @@ TEST(SphericalTriangle, AreaAndInverse) {
         }
 }
 
-// Uniform in solid angle where the triangle subtends between 3e-4 and 6.22 sr; outside, the
-// area density converted to solid angle, as pbrt-v4 chooses: a triangle 1e-5 sr small (too
-// small for the spherical construction's precision) and one 6.26 sr large (seen from just above
-// it, where the construction is unstable). PDF gives the same density either way.
+// Uniform in solid angle where the triangle subtends between 3e-4 and 6.22 sr and does not look
+// small (SampledByAreaFrom: within 18 degrees of its centroid); otherwise the area density
+// converted to solid angle. Area sampling: a triangle 1e-5 sr small (too small for the spherical
+// construction's precision), one 6.26 sr large (seen from just above it, where the construction
+// is unstable), and one of 0.055 sr seen from 3 units away, inside a cone of 14 degrees (pbrt-v4
+// samples that one by solid angle). Spherical: the same triangle from 2 units, 21 degrees.
+// PDF gives the same density either way.
 TEST(SphericalTriangle, AreaSamplingOutsideItsRange) {
     auto mesh = OneTriangle();
     Triangle tri(mesh.get(), 0);
@@ -687,7 +695,8 @@ TEST(SphericalTriangle, AreaSamplingOutsideItsRange) {
         bool spherical;
     };
     for (Case c : {Case{Point3f(0.2f, 0.3f, 0.5f), true}, Case{Point3f(0.2f, 0.3f, 150), false},
-                   Case{Point3f(0.3f, 0.3f, 0.002f), false}}) {
+                   Case{Point3f(0.3f, 0.3f, 0.002f), false}, Case{Point3f(0.2f, 0.3f, 3), false},
+                   Case{Point3f(0.2f, 0.3f, 2), true}}) {
         ShapeSampleContext ctx(c.p, Normal3f(), Normal3f());
         Float solidAngle = SphericalTriangle({Point3f(0, 0, 0), Point3f(1, 0, 0), Point3f(0, 1, 0)}, c.p).Area();
         RNG rng(8);
@@ -722,30 +731,37 @@ TEST(SphericalRectangle, AreaAndInverse) {
     }
 }
 
-// Rectangular patches: uniform in solid angle within pbrt-v4's range, area sampling outside it
-// and for patches that are not rectangles; Sample's density is PDF's, with and without the warp.
+// Rectangular patches: uniform in solid angle within pbrt-v4's range where they do not look
+// small, area sampling otherwise (the unit square from 3 above its centre fits a cone of 13
+// degrees; from 1.2 above, 30 degrees) and for patches that are not rectangles; Sample's density
+// is PDF's, with and without the warp.
 TEST(SphericalRectangle, PatchSampleAndPdfAgree) {
     auto square = OnePatch(Point3f(1, 1, 0));
     BilinearPatch patch(square.get(), 0);
     RNG rng(4);
+    enum class Density { Uniform, Warped, Area };
     struct Case {
         Point3f p;
         Normal3f ns;
-        bool uniform;
+        Density density;
     };
-    for (Case c : {Case{Point3f(0.2f, 0.7f, 0.9f), Normal3f(0, 0, 0), true},
-                   Case{Point3f(0.2f, 0.7f, 0.9f), Normal3f(0, 0, -1), false},
-                   Case{Point3f(0.5f, 0.5f, 200), Normal3f(0, 0, 0), false}}) {
+    for (Case c : {Case{Point3f(0.2f, 0.7f, 0.9f), Normal3f(0, 0, 0), Density::Uniform},
+                   Case{Point3f(0.2f, 0.7f, 0.9f), Normal3f(0, 0, -1), Density::Warped},
+                   Case{Point3f(0.5f, 0.5f, 200), Normal3f(0, 0, 0), Density::Area},
+                   Case{Point3f(0.5f, 0.5f, 1.2f), Normal3f(0, 0, 0), Density::Uniform},
+                   Case{Point3f(0.5f, 0.5f, 3), Normal3f(0, 0, 0), Density::Area}}) {
         ShapeSampleContext ctx(c.p, c.ns, c.ns);
         Float solidAngle = SphericalRectangle(Point3f(0, 0, 0), Vector3f(1, 0, 0), Vector3f(0, 1, 0), c.p).Area();
         for (int i = 0; i < 500; ++i) {
             pstd::optional<ShapeSample> ss = patch.Sample(ctx, Point2f(rng.Uniform<Float>(), rng.Uniform<Float>()));
             ASSERT_TRUE(ss);
-            if (c.uniform) {
+            Vector3f w = ss->intr.p - c.p;
+            if (c.density == Density::Uniform)
                 EXPECT_NEAR(ss->pdf, 1 / solidAngle, 1e-4f / solidAngle);
-            }
-            Vector3f w = Normalize(ss->intr.p - c.p);
-            EXPECT_NEAR(patch.PDF(ctx, w), ss->pdf, 5e-3f * ss->pdf) << "solid angle " << solidAngle;
+            Float areaPdf = LengthSquared(w) / std::abs(Normalize(w).z);  // the square's area is 1
+            if (c.density == Density::Area)
+                EXPECT_NEAR(ss->pdf, areaPdf, 1e-4f * areaPdf);
+            EXPECT_NEAR(patch.PDF(ctx, Normalize(w)), ss->pdf, 5e-3f * ss->pdf) << "solid angle " << solidAngle;
         }
     }
 }
