@@ -226,6 +226,9 @@ class PiecewiseConstant1D {
         funcInt = cdf[n];
         for (size_t i = 1; i <= n; ++i)
             cdf[i] = funcInt > 0 ? cdf[i] / funcInt : Float(i) / Float(n);
+        guide.resize(n + 1);
+        for (size_t k = 0; k <= n; ++k)
+            guide[k] = FindPiece(Float(k) / Float(n), 0, int(n) - 1);
     }
 
     Float Integral() const { return funcInt; }
@@ -233,7 +236,7 @@ class PiecewiseConstant1D {
 
     // x in [min, max]; *pdf is the density per unit x, *offset the piece x lies in.
     Float Sample(Float u, Float *pdf = nullptr, int *offset = nullptr) const {
-        int o = detail::FindInterval(int(cdf.size()), [&](int i) { return cdf[i] <= u; });
+        int o = FindPiece(u);
         if (offset)
             *offset = o;
         Float du = u - cdf[o];
@@ -256,6 +259,30 @@ class PiecewiseConstant1D {
     std::vector<Float> func, cdf;  // |f|, and the CDF normalized to end at 1
     Float min = 0, max = 1;
     Float funcInt = 0;  // integral of |f| over [min, max]
+
+  private:
+    // The piece u falls in: the last i with cdf[i] <= u (0 for u below them all), as
+    // FindInterval's bisection finds it over the pieces [first, last].
+    int FindPiece(Float u, int first, int last) const {
+        return first + detail::FindInterval(last - first + 2, [&](int i) { return cdf[first + i] <= u; });
+    }
+    // The same over all pieces, in a step or two: the piece lies between the guide's pieces at
+    // the multiples of 1 / n around u (the CDF is monotone), a range that holds one or two
+    // pieces for a smooth density, and the bisection runs over that range only. The camera
+    // samples its filter this way twice per ray. The steps after it only act where u n rounded
+    // across a multiple.
+    int FindPiece(Float u) const {
+        int n = int(size());
+        if (!(u >= 0 && u < 1))
+            return FindPiece(u, 0, n - 1);
+        int k = std::min(int(u * n), n - 1);
+        int o = FindPiece(u, guide[k], guide[k + 1]);
+        while (o > 0 && cdf[o] > u) --o;
+        while (o < n - 1 && cdf[o + 1] <= u) ++o;
+        return o;
+    }
+
+    std::vector<int> guide;  // guide[k]: FindPiece(k / n); n + 1 entries
 };
 
 // A piecewise-constant density over a rectangle, proportional to |f| on an nu x nv grid
