@@ -259,11 +259,15 @@ Float Triangle::PDF(const ShapeSampleContext &ctx, Vector3f wi) const {
     pstd::optional<TriangleHit> hit = IntersectTriangle(SpawnRay(ctx, w), Infinity, p0, p1, p2);
     if (!hit)
         return 0;
-    SphericalTriangle spherical(v, ctx.p);
-    if (SampledByAreaFrom(ctx.p, v) || !SampledBySolidAngle(spherical.Area())) {
+    auto areaDensity = [&] {
         Normal3f n(Cross(p1 - p0, p2 - p0));
         return AreaToSolidAngle(1 / Area(), ctx.p, Interpolate(hit->b, p0, p1, p2), Normalize(n), w);
-    }
+    };
+    if (SampledByAreaFrom(ctx.p, v))
+        return areaDensity();
+    SphericalTriangle spherical(v, ctx.p);
+    if (!SampledBySolidAngle(spherical.Area()))
+        return areaDensity();
     Float pdf = 1 / spherical.Area();
     if (ctx.ns != Normal3f(0, 0, 0))
         pdf *= BilinearPDF(spherical.Invert(w), TriangleCosineWarp(spherical, ctx.ns));

@@ -756,11 +756,13 @@ TEST(SphericalRectangle, PatchSampleAndPdfAgree) {
             pstd::optional<ShapeSample> ss = patch.Sample(ctx, Point2f(rng.Uniform<Float>(), rng.Uniform<Float>()));
             ASSERT_TRUE(ss);
             Vector3f w = ss->intr.p - c.p;
-            if (c.density == Density::Uniform)
+            if (c.density == Density::Uniform) {
                 EXPECT_NEAR(ss->pdf, 1 / solidAngle, 1e-4f / solidAngle);
+            }
             Float areaPdf = LengthSquared(w) / std::abs(Normalize(w).z);  // the square's area is 1
-            if (c.density == Density::Area)
+            if (c.density == Density::Area) {
                 EXPECT_NEAR(ss->pdf, areaPdf, 1e-4f * areaPdf);
+            }
             EXPECT_NEAR(patch.PDF(ctx, Normalize(w)), ss->pdf, 5e-3f * ss->pdf) << "solid angle " << solidAngle;
         }
     }
