@@ -413,6 +413,7 @@ SampledSpectrum BDPTIntegrator::ConnectBDPT(SampledWavelengths &lambda, BDPTVert
         if (!cs)
             return SampledSpectrum(0.f);
         *pRaster = cs->pRaster;
+        film.PrefetchSplat(cs->pRaster);
         sampled = CameraVertex(cs->pLens, cs->nLens, qs.time, scene.cameraMedium, cs->Wi / cs->pdf);
         L = qs.beta * qs.f(*sampled, TransportMode::Importance) * sampled->beta;
         if (qs.IsOnSurface())

@@ -52,26 +52,30 @@ void RGBFilm::EnableSplats(bool perThreadSums) {
     if (!threadSplatsEnabled) splats.resize(3 * pixels.size());
 }
 
-void RGBFilm::AddSplat(Point2f pFilm, const SampledSpectrum &L, const SampledWavelengths &lambda) {
-    // The pixels whose centers lie within the filter's radius of pFilm.
+// The pixels whose centers lie within the filter's radius of pFilm.
+Bounds2i RGBFilm::SplatBounds(Point2f pFilm) const {
     Point2f pDiscrete = pFilm + Vector2f(0.5f, 0.5f);
     Vector2f radius = filter.Radius();
     Bounds2i splatBounds(Point2i(int(std::floor(pDiscrete.x - radius.x)), int(std::floor(pDiscrete.y - radius.y))),
                          Point2i(int(std::floor(pDiscrete.x + radius.x)) + 1,
                                  int(std::floor(pDiscrete.y + radius.y)) + 1));
-    splatBounds = Intersect(splatBounds, pixelBounds);
+    return Intersect(splatBounds, pixelBounds);
+}
+
+double *RGBFilm::ThreadSplatSums() {
+    if (!threadSplatsEnabled)
+        return nullptr;
+    std::vector<double> &sums = threadSplats.local();
+    if (sums.empty()) sums.resize(3 * pixels.size());
+    return sums.data();
+}
+
+void RGBFilm::PrefetchSplat(Point2f pFilm) {
+    Bounds2i splatBounds = SplatBounds(pFilm);
     if (splatBounds.IsEmpty())
         return;
-    double *own = nullptr;
-    if (threadSplatsEnabled) {
-        std::vector<double> &sums = threadSplats.local();
-        if (sums.empty()) sums.resize(3 * pixels.size());
-        own = sums.data();
-    }
+    const double *own = ThreadSplatSums();
     constexpr size_t kDoublesPerCacheLine = 64 / sizeof(double);
-    // Splats land anywhere on the film, so their sums are rarely cached: fetching each row's
-    // now overlaps the misses with the colour conversion and filter weights below (without it,
-    // waiting for them was three quarters of AddSplat's time under bdpt).
     for (int y = splatBounds.pMin.y; y < splatBounds.pMax.y; ++y) {
         size_t first = 3 * PixelIndex(Point2i(splatBounds.pMin.x, y));
         size_t last = 3 * PixelIndex(Point2i(splatBounds.pMax.x - 1, y)) + 2;
@@ -79,6 +83,13 @@ void RGBFilm::AddSplat(Point2f pFilm, const SampledSpectrum &L, const SampledWav
             __builtin_prefetch(own ? &own[i] : static_cast<const void *>(&splats[i]), 1);
         __builtin_prefetch(own ? &own[last] : static_cast<const void *>(&splats[last]), 1);
     }
+}
+
+void RGBFilm::AddSplat(Point2f pFilm, const SampledSpectrum &L, const SampledWavelengths &lambda) {
+    Bounds2i splatBounds = SplatBounds(pFilm);
+    if (splatBounds.IsEmpty())
+        return;
+    double *own = ThreadSplatSums();
     RGB rgb = ClampedSensorRGB(L, lambda);
     // The filter is separable: its values along each axis, once (on the stack unless the filter
     // is very wide).

@@ -75,6 +75,7 @@ void LightPathIntegrator::ConnectToCamera(const SurfaceInteraction &si, const BS
     pstd::optional<CameraWiSample> cs = camera.SampleWi(si.p, si.time, sampler.Get2D());
     if (!cs)
         return;
+    film.PrefetchSplat(cs->pRaster);
     SampledSpectrum L = beta * bsdf.f(si.wo, cs->wi, TransportMode::Importance) *
                         AbsDot(cs->wi, Vector3f(si.shading.n)) * cs->Wi / cs->pdf;
     if (L && Unoccluded(si.SpawnRayTo(cs->pLens), rays))
