@@ -389,6 +389,9 @@ int BDPTIntegrator::RandomWalk(SampledWavelengths &lambda, RayDifferential ray, 
     return bounces;
 }
 
+// Strategies s = 1 and t = 1 sample the endpoint they connect to; it is a local vertex, built
+// only by them (a whole BDPTVertex is 464 bytes: an optional one on every call zeroed them for
+// every strategy).
 SampledSpectrum BDPTIntegrator::ConnectBDPT(SampledWavelengths &lambda, BDPTVertex *lightVertices,
                                             BDPTVertex *cameraVertices, int s, int t, Sampler &sampler,
                                             RayCounts &rays, pstd::optional<Point2f> *pRaster,
@@ -396,58 +399,16 @@ SampledSpectrum BDPTIntegrator::ConnectBDPT(SampledWavelengths &lambda, BDPTVert
     // An escaped camera ray has nothing to connect to.
     if (t > 1 && s != 0 && cameraVertices[t - 1].type == VertexType::Light)
         return SampledSpectrum(0.f);
+    if (s != 0 && t == 1)
+        return ConnectToCamera(lambda, lightVertices, cameraVertices, s, sampler, rays, pRaster, misWeight);
+    if (s == 1)
+        return ConnectToLight(lambda, lightVertices, cameraVertices, t, sampler, rays, misWeight);
     SampledSpectrum L(0.f);
-    // The endpoint a connection samples (s = 1: on a light; t = 1: on the lens).
-    std::optional<BDPTVertex> sampled;
     if (s == 0) {
         // The camera subpath alone, ending on an emitter.
         const BDPTVertex &pt = cameraVertices[t - 1];
         if (pt.IsLight())
             L = pt.Le(scene, cameraVertices[t - 2], lambda) * pt.beta;
-    } else if (t == 1) {
-        // A lens point for the light subpath.
-        const BDPTVertex &qs = lightVertices[s - 1];
-        if (!qs.IsConnectible())
-            return SampledSpectrum(0.f);
-        pstd::optional<CameraWiSample> cs = camera.SampleWi(qs.p, qs.time, sampler.Get2D());
-        if (!cs)
-            return SampledSpectrum(0.f);
-        *pRaster = cs->pRaster;
-        film.PrefetchSplat(cs->pRaster);
-        sampled = CameraVertex(cs->pLens, cs->nLens, qs.time, scene.cameraMedium, cs->Wi / cs->pdf);
-        L = qs.beta * qs.f(*sampled, TransportMode::Importance) * sampled->beta;
-        if (qs.IsOnSurface())
-            L *= AbsDot(cs->wi, Vector3f(qs.ns()));
-        if (L)
-            L *= cropScale * Transmittance(scene, qs.SpawnRayTo(cs->pLens), cs->pLens, lambda, rays);
-    } else if (s == 1) {
-        // A light point for the camera subpath (next-event estimation).
-        const BDPTVertex &pt = cameraVertices[t - 1];
-        if (!pt.IsConnectible())
-            return SampledSpectrum(0.f);
-        pstd::optional<SampledLight> chosen = lightSampler.Sample(sampler.Get1D());
-        Point2f u = sampler.Get2D();
-        if (!chosen)
-            return SampledSpectrum(0.f);
-        const Light &light = scene.lights[chosen->lightIndex];
-        // From the surface point itself, as the path tracer samples lights. (pbrt-v4 moves it off
-        // the surface to the side the BSDF scatters to; on a surface that emits too, that point
-        // then sees its own emitter as a hemisphere of light: 2 % too much of the light two
-        // bounces deep in BDPTStrategies' scene, where the lamp's shade reflects.)
-        LightSampleContext ctx = pt.type == VertexType::Surface
-                                     ? LightSampleContext(pt.si)
-                                     : LightSampleContext(pt.p, Normal3f(0, 0, 0), Normal3f(0, 0, 0));
-        pstd::optional<LightLiSample> ls = light.SampleLi(ctx, u, lambda);
-        if (!ls || !ls->L || !(ls->pdf > 0))
-            return SampledSpectrum(0.f);
-        sampled = LightVertex(chosen->lightIndex, light.Type(), ls->pLight, ls->nLight, ls->uvLight,
-                              pt.time, pt.medium, ls->L / (ls->pdf * chosen->p), 0);
-        sampled->pdfFwd = sampled->PDFLightOrigin(*this, pt);
-        L = pt.beta * pt.f(*sampled, TransportMode::Radiance) * sampled->beta;
-        if (pt.IsOnSurface())
-            L *= AbsDot(ls->wi, Vector3f(pt.ns()));
-        if (L)
-            L *= Transmittance(scene, pt.SpawnRayTo(ls->pLight), ls->pLight, lambda, rays);
     } else {
         // Both subpaths, joined by a segment.
         const BDPTVertex &qs = lightVertices[s - 1], &pt = cameraVertices[t - 1];
@@ -465,7 +426,68 @@ SampledSpectrum BDPTIntegrator::ConnectBDPT(SampledWavelengths &lambda, BDPTVert
             L *= g * Transmittance(scene, qs.SpawnRayTo(pt.p), pt.p, lambda, rays);
         }
     }
-    *misWeight = L ? MISWeight(lightVertices, cameraVertices, sampled ? &*sampled : nullptr, s, t) : 0;
+    return WeightedByMIS(L, lightVertices, cameraVertices, nullptr, s, t, misWeight);
+}
+
+// t = 1: a lens point for the light subpath.
+SampledSpectrum BDPTIntegrator::ConnectToCamera(SampledWavelengths &lambda, BDPTVertex *lightVertices,
+                                                BDPTVertex *cameraVertices, int s, Sampler &sampler,
+                                                RayCounts &rays, pstd::optional<Point2f> *pRaster,
+                                                Float *misWeight) const {
+    const BDPTVertex &qs = lightVertices[s - 1];
+    if (!qs.IsConnectible())
+        return SampledSpectrum(0.f);
+    pstd::optional<CameraWiSample> cs = camera.SampleWi(qs.p, qs.time, sampler.Get2D());
+    if (!cs)
+        return SampledSpectrum(0.f);
+    *pRaster = cs->pRaster;
+    film.PrefetchSplat(cs->pRaster);
+    BDPTVertex sampled = CameraVertex(cs->pLens, cs->nLens, qs.time, scene.cameraMedium, cs->Wi / cs->pdf);
+    SampledSpectrum L = qs.beta * qs.f(sampled, TransportMode::Importance) * sampled.beta;
+    if (qs.IsOnSurface())
+        L *= AbsDot(cs->wi, Vector3f(qs.ns()));
+    if (L)
+        L *= cropScale * Transmittance(scene, qs.SpawnRayTo(cs->pLens), cs->pLens, lambda, rays);
+    return WeightedByMIS(L, lightVertices, cameraVertices, &sampled, s, 1, misWeight);
+}
+
+// s = 1: a light point for the camera subpath (next-event estimation).
+SampledSpectrum BDPTIntegrator::ConnectToLight(SampledWavelengths &lambda, BDPTVertex *lightVertices,
+                                               BDPTVertex *cameraVertices, int t, Sampler &sampler,
+                                               RayCounts &rays, Float *misWeight) const {
+    const BDPTVertex &pt = cameraVertices[t - 1];
+    if (!pt.IsConnectible())
+        return SampledSpectrum(0.f);
+    pstd::optional<SampledLight> chosen = lightSampler.Sample(sampler.Get1D());
+    Point2f u = sampler.Get2D();
+    if (!chosen)
+        return SampledSpectrum(0.f);
+    const Light &light = scene.lights[chosen->lightIndex];
+    // From the surface point itself, as the path tracer samples lights. (pbrt-v4 moves it off
+    // the surface to the side the BSDF scatters to; on a surface that emits too, that point
+    // then sees its own emitter as a hemisphere of light: 2 % too much of the light two
+    // bounces deep in BDPTStrategies' scene, where the lamp's shade reflects.)
+    LightSampleContext ctx = pt.type == VertexType::Surface
+                                 ? LightSampleContext(pt.si)
+                                 : LightSampleContext(pt.p, Normal3f(0, 0, 0), Normal3f(0, 0, 0));
+    pstd::optional<LightLiSample> ls = light.SampleLi(ctx, u, lambda);
+    if (!ls || !ls->L || !(ls->pdf > 0))
+        return SampledSpectrum(0.f);
+    BDPTVertex sampled = LightVertex(chosen->lightIndex, light.Type(), ls->pLight, ls->nLight, ls->uvLight,
+                                     pt.time, pt.medium, ls->L / (ls->pdf * chosen->p), 0);
+    sampled.pdfFwd = sampled.PDFLightOrigin(*this, pt);
+    SampledSpectrum L = pt.beta * pt.f(sampled, TransportMode::Radiance) * sampled.beta;
+    if (pt.IsOnSurface())
+        L *= AbsDot(ls->wi, Vector3f(pt.ns()));
+    if (L)
+        L *= Transmittance(scene, pt.SpawnRayTo(ls->pLight), ls->pLight, lambda, rays);
+    return WeightedByMIS(L, lightVertices, cameraVertices, &sampled, 1, t, misWeight);
+}
+
+SampledSpectrum BDPTIntegrator::WeightedByMIS(SampledSpectrum L, BDPTVertex *lightVertices,
+                                              BDPTVertex *cameraVertices, BDPTVertex *sampled, int s,
+                                              int t, Float *misWeight) const {
+    *misWeight = L ? MISWeight(lightVertices, cameraVertices, sampled, s, t) : 0;
     return L * *misWeight;
 }
 

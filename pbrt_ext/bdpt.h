@@ -60,6 +60,16 @@ class BDPTIntegrator {
                                 BDPTVertex *cameraVertices, int s, int t, Sampler &sampler,
                                 RayCounts &rays, pstd::optional<Point2f> *pRaster,
                                 Float *misWeight) const;
+    SampledSpectrum ConnectToCamera(SampledWavelengths &lambda, BDPTVertex *lightVertices,
+                                    BDPTVertex *cameraVertices, int s, Sampler &sampler, RayCounts &rays,
+                                    pstd::optional<Point2f> *pRaster, Float *misWeight) const;
+    SampledSpectrum ConnectToLight(SampledWavelengths &lambda, BDPTVertex *lightVertices,
+                                   BDPTVertex *cameraVertices, int t, Sampler &sampler, RayCounts &rays,
+                                   Float *misWeight) const;
+    // L times its MIS weight, which goes to *misWeight (0 for no contribution).
+    SampledSpectrum WeightedByMIS(SampledSpectrum L, BDPTVertex *lightVertices,
+                                  BDPTVertex *cameraVertices, BDPTVertex *sampled, int s, int t,
+                                  Float *misWeight) const;
     // The density with which the light subpath starts at an infinite light toward -w.
     Float InfiniteLightDensity(Vector3f w) const;
     RGBFilm *StrategyFilm(int s, int t) const;
