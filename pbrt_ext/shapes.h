@@ -107,10 +107,10 @@ SurfaceInteraction TransformInteraction(const Transform &t, const SurfaceInterac
 
 class Triangle {
   public:
-    Triangle(const TriangleMesh *mesh, int triIndex) : mesh(mesh), triIndex(triIndex) {}
+    Triangle(const TriangleMesh *mesh, int triIndex);
 
     Bounds3f Bounds() const;
-    Float Area() const;
+    Float Area() const { return area; }
     pstd::optional<ShapeIntersection> Intersect(const Ray &ray, Float tMax = Infinity) const;
     bool IntersectP(const Ray &ray, Float tMax = Infinity) const;
     pstd::optional<ShapeSample> Sample(Point2f u) const;
@@ -126,9 +126,17 @@ class Triangle {
 
   private:
     pstd::optional<ShapeSample> SampleAt(std::array<Float, 3> b, Float pdf) const;
+    bool SampledByAreaFrom(Point3f p) const;
 
     const TriangleMesh *mesh;
     int triIndex;
+    // What sampling the triangle as an emitter asks for at every shading point, computed once:
+    // only emitters and tests make Triangle objects (the aggregate's hits go to
+    // InteractionFromIntersection).
+    Float area;
+    Normal3f unitNormal;  // the winding's, before any orientation
+    Point3f centroid;
+    Float radius2;  // the largest squared distance from the centroid to a vertex
 };
 
 // Where a ray meets a sphere or disk, in the shape's object space: what Intersect needs to build

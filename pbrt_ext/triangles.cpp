@@ -131,9 +131,14 @@ Bounds3f Triangle::Bounds() const {
     return Union(Bounds3f(p0, p1), p2);
 }
 
-Float Triangle::Area() const {
+Triangle::Triangle(const TriangleMesh *mesh, int triIndex) : mesh(mesh), triIndex(triIndex) {
     auto [p0, p1, p2] = Vertices(mesh, triIndex);
-    return Length(Cross(p1 - p0, p2 - p0)) / 2;
+    Vector3f n = Cross(p1 - p0, p2 - p0);
+    area = Length(n) / 2;
+    unitNormal = Normal3f(Normalize(n));
+    centroid = (p0 + p1 + p2) / 3;
+    radius2 = std::max({DistanceSquared(p0, centroid), DistanceSquared(p1, centroid),
+                        DistanceSquared(p2, centroid)});
 }
 
 SurfaceInteraction Triangle::InteractionFromIntersection(const TriangleMesh *mesh, int triIndex,
@@ -216,7 +221,7 @@ pstd::optional<ShapeSample> Triangle::Sample(Point2f u) const {
 pstd::optional<ShapeSample> Triangle::SampleAt(std::array<Float, 3> b, Float pdf) const {
     const int *v = &mesh->indices[3 * triIndex];
     auto [p0, p1, p2] = Vertices(mesh, triIndex);
-    Normal3f n = Normal3f(Normalize(Cross(p1 - p0, p2 - p0)));
+    Normal3f n = unitNormal;
     // Orient n as Intersect does.
     if (!mesh->n.empty())
         n = FaceForward(n, Interpolate(b, mesh->n[v[0]], mesh->n[v[1]], mesh->n[v[2]]));
@@ -226,18 +231,16 @@ pstd::optional<ShapeSample> Triangle::SampleAt(std::array<Float, 3> b, Float pdf
     return MakeSample(Interpolate(b, p0, p1, p2), n, Interpolate(b, uv[0], uv[1], uv[2]), pdf);
 }
 
-// Whether Sample(ctx, u) samples by area from p (SampledByAreaFrom, about the centroid).
-static bool SampledByAreaFrom(Point3f p, const std::array<Point3f, 3> &v) {
-    Point3f c = (v[0] + v[1] + v[2]) / 3;
-    Float radius2 = std::max({DistanceSquared(v[0], c), DistanceSquared(v[1], c), DistanceSquared(v[2], c)});
-    return shapedetail::SampledByAreaFrom(p, c, radius2);
+// Whether Sample(ctx, u) samples by area from p (shapedetail's SampledByAreaFrom, about the
+// centroid).
+bool Triangle::SampledByAreaFrom(Point3f p) const {
+    return shapedetail::SampledByAreaFrom(p, centroid, radius2);
 }
 
 pstd::optional<ShapeSample> Triangle::Sample(const ShapeSampleContext &ctx, Point2f u) const {
-    std::array<Point3f, 3> v = Vertices(mesh, triIndex);
-    if (SampledByAreaFrom(ctx.p, v))
+    if (SampledByAreaFrom(ctx.p))
         return SampleBySolidAngle(*this, ctx, u);
-    SphericalTriangle spherical(v, ctx.p);
+    SphericalTriangle spherical(Vertices(mesh, triIndex), ctx.p);
     if (!SampledBySolidAngle(spherical.Area()))
         return SampleBySolidAngle(*this, ctx, u);
     Float pdf = 1 / spherical.Area();
@@ -260,10 +263,9 @@ Float Triangle::PDF(const ShapeSampleContext &ctx, Vector3f wi) const {
     if (!hit)
         return 0;
     auto areaDensity = [&] {
-        Normal3f n(Cross(p1 - p0, p2 - p0));
-        return AreaToSolidAngle(1 / Area(), ctx.p, Interpolate(hit->b, p0, p1, p2), Normalize(n), w);
+        return AreaToSolidAngle(1 / area, ctx.p, Interpolate(hit->b, p0, p1, p2), unitNormal, w);
     };
-    if (SampledByAreaFrom(ctx.p, v))
+    if (SampledByAreaFrom(ctx.p))
         return areaDensity();
     SphericalTriangle spherical(v, ctx.p);
     if (!SampledBySolidAngle(spherical.Area()))
