@@ -44,12 +44,34 @@ Float DenselySampledSpectrum::MaxValue() const {
     return values.empty() ? 0 : *std::max_element(values.begin(), values.end());
 }
 
+PiecewiseLinearSpectrum::PiecewiseLinearSpectrum(std::vector<Float> lambdas0, std::vector<Float> values0)
+    : lambdas(std::move(lambdas0)), values(std::move(values0)) {
+    constexpr Float kMaxTabulatedRange = 10000;  // nm
+    if (lambdas.size() < 2 || !(lambdas.back() - lambdas.front() <= kMaxTabulatedRange)) return;
+    std::vector<int> table(size_t(lambdas.back() - lambdas.front()) + 1);
+    for (size_t k = 0; k < table.size(); ++k) table[k] = int(Segment(lambdas.front() + Float(k)));
+    firstSegment = std::move(table);
+}
+
+// The same index as FindInterval's bisection: the steps from the table's entry only act where
+// lambda - lambdas.front() rounded across a whole nm.
+size_t PiecewiseLinearSpectrum::Segment(Float lambda) const {
+    size_t last = lambdas.size() - 2;
+    if (firstSegment.empty())
+        return size_t(detail::FindInterval(int(lambdas.size()),
+                                           [&](int k) { return lambdas[size_t(k)] <= lambda; }));
+    size_t k = std::min(size_t(lambda - lambdas.front()), firstSegment.size() - 1);
+    size_t i = size_t(firstSegment[k]);
+    while (i > 0 && lambdas[i] > lambda) --i;
+    while (i < last && lambdas[i + 1] <= lambda) ++i;
+    return i;
+}
+
 Float PiecewiseLinearSpectrum::operator()(Float lambda) const {
     if (lambdas.empty() || lambda < lambdas.front() || lambda > lambdas.back()) return 0;
     if (lambda == lambdas.back()) return values.back();
     // The last node at or below lambda; the one after it lies above.
-    size_t i = size_t(detail::FindInterval(int(lambdas.size()),
-                                           [&](int k) { return lambdas[size_t(k)] <= lambda; }));
+    size_t i = Segment(lambda);
     Float t = (lambda - lambdas[i]) / (lambdas[i + 1] - lambdas[i]);
     return Lerp(t, values[i], values[i + 1]);
 }
@@ -96,10 +118,8 @@ RGBIlluminantSpectrum::RGBIlluminantSpectrum(const RGBColorSpace &cs, RGB rgb)
 
 Spectrum Spectrum::PiecewiseLinear(std::vector<Float> lambdas, std::vector<Float> values) {
     assert(lambdas.size() == values.size());
-    auto s = std::make_shared<PiecewiseLinearSpectrum>();
-    s->lambdas = std::move(lambdas);
-    s->values = std::move(values);
-    return Spectrum(std::shared_ptr<const PiecewiseLinearSpectrum>(std::move(s)));
+    return Spectrum(std::shared_ptr<const PiecewiseLinearSpectrum>(
+        std::make_shared<PiecewiseLinearSpectrum>(std::move(lambdas), std::move(values))));
 }
 
 Spectrum Spectrum::PiecewiseLinear(std::span<const Float> interleaved, bool normalize) {

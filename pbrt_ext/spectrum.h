@@ -64,11 +64,21 @@ struct DenselySampledSpectrum {
 
 // Linear between (lambda, value) samples with increasing lambda; zero outside them.
 struct PiecewiseLinearSpectrum {
+    PiecewiseLinearSpectrum(std::vector<Float> lambdas, std::vector<Float> values);
+
     std::vector<Float> lambdas, values;
 
     Float operator()(Float lambda) const;
     SampledSpectrum Sample(const SampledWavelengths &lambda) const { return SampleEach(*this, lambda); }
     Float MaxValue() const;
+
+  private:
+    // The segment holding lambda, within the nodes' range: the last node at or below it.
+    size_t Segment(Float lambda) const;
+    // firstSegment[k]: Segment(lambdas.front() + k) for each whole nm of the range, so that a
+    // lookup starts at most a node or two from its segment (a conductor's eta and k are looked
+    // up at four wavelengths per hit); empty for a range too wide to tabulate.
+    std::vector<int> firstSegment;
 };
 
 // Planck's law at temperature T, scaled to a peak of 1 (at Wien's displacement wavelength).

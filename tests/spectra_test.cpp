@@ -351,6 +351,26 @@ TEST(SpectraRange, SamplesAreZeroOutsideTheirRange) {
     EXPECT_GT(rgb[0], 0.5f);
 }
 
+// The table of whole-nm starting segments finds the segment the bisection finds: every value is
+// the interpolation between the nodes around lambda, to the bit, for nodes at fractional and
+// uneven wavelengths (as measured metal data has), at and between nodes and whole nm.
+TEST(SpectraRange, PiecewiseLinearLookupIsTheInterpolationBetweenItsNodes) {
+    std::vector<Float> lambdas = {358.7f, 360.0f, 360.4f, 361.3f, 365.0f, 400.05f, 400.95f, 401.0f,
+                                  520.5f, 700.0f, 829.99f, 831.2f};
+    std::vector<Float> values(lambdas.size());
+    for (size_t i = 0; i < values.size(); ++i) values[i] = Float(i % 3) + 0.1f * Float(i);
+    Spectrum s = Spectrum::PiecewiseLinear(lambdas, values);
+    std::vector<Float> probes(lambdas);
+    for (Float lambda = 358.7f; lambda <= 831.2f; lambda += 0.05f) probes.push_back(lambda);
+    for (Float lambda : probes) {
+        size_t i = size_t(std::upper_bound(lambdas.begin(), lambdas.end(), lambda) - lambdas.begin()) - 1;
+        Float expected = i + 1 == lambdas.size()
+                             ? values.back()
+                             : Lerp((lambda - lambdas[i]) / (lambdas[i + 1] - lambdas[i]), values[i], values[i + 1]);
+        ASSERT_EQ(s(lambda), expected) << lambda;
+    }
+}
+
 class SpectrumFiles : public testing::Test {
   protected:
     void SetUp() override {
