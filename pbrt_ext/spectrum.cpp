@@ -68,7 +68,8 @@ size_t PiecewiseLinearSpectrum::Segment(Float lambda) const {
 }
 
 Float PiecewiseLinearSpectrum::operator()(Float lambda) const {
-    if (lambdas.empty() || lambda < lambdas.front() || lambda > lambdas.back()) return 0;
+    // (A NaN lambda is outside too: Segment's table index needs a number.)
+    if (lambdas.empty() || !(lambda >= lambdas.front() && lambda <= lambdas.back())) return 0;
     if (lambda == lambdas.back()) return values.back();
     // The last node at or below lambda; the one after it lies above.
     size_t i = Segment(lambda);

@@ -17,10 +17,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <sstream>
 
 namespace pbrt {
@@ -353,7 +355,8 @@ TEST(SpectraRange, SamplesAreZeroOutsideTheirRange) {
 
 // The table of whole-nm starting segments finds the segment the bisection finds: every value is
 // the interpolation between the nodes around lambda, to the bit, for nodes at fractional and
-// uneven wavelengths (as measured metal data has), at and between nodes and whole nm.
+// uneven wavelengths (as measured metal data has), at and between nodes and whole nm; a NaN
+// wavelength is outside the range (0), not an index into the table.
 TEST(SpectraRange, PiecewiseLinearLookupIsTheInterpolationBetweenItsNodes) {
     std::vector<Float> lambdas = {358.7f, 360.0f, 360.4f, 361.3f, 365.0f, 400.05f, 400.95f, 401.0f,
                                   520.5f, 700.0f, 829.99f, 831.2f};
@@ -369,6 +372,7 @@ TEST(SpectraRange, PiecewiseLinearLookupIsTheInterpolationBetweenItsNodes) {
                              : Lerp((lambda - lambdas[i]) / (lambdas[i + 1] - lambdas[i]), values[i], values[i + 1]);
         ASSERT_EQ(s(lambda), expected) << lambda;
     }
+    EXPECT_EQ(s(std::numeric_limits<Float>::quiet_NaN()), 0);
 }
 
 class SpectrumFiles : public testing::Test {
