@@ -161,8 +161,9 @@ inline bool SampledBySolidAngle(Float solidAngle) {
 // to solid angle varies little over the emitter, so area sampling's noise is close to spherical
 // sampling's, at a quarter of its cost (spherical sampling normalizes three directions and takes
 // an arctangent in double, and warps for the receiver's cosine). Measured at 8 spp on pbrt-v4's
-// Cornell boxes, whose light is 7 to 18 degrees across from most points: 13 % less time for 3 to
-// 4 % more seed-to-seed error (docs/benchmarks.md, "Stop 39"). A cheap bound comes first so that
+// Cornell boxes, each of whose two light triangles fits in a cone of half-angle 10 degrees from
+// the floor: 13 % less time for 3 to 4 % more seed-to-seed error (docs/benchmarks.md, "Stop
+// 39"). A cheap bound comes first so that
 // the spherical construction is not paid for just to decide against it; the caller then applies
 // SampledBySolidAngle's limits to what remains.
 inline bool SampledByAreaFrom(Point3f p, Point3f c, Float radius2) {

@@ -56,15 +56,12 @@ PiecewiseLinearSpectrum::PiecewiseLinearSpectrum(std::vector<Float> lambdas0, st
 // The same index as FindInterval's bisection: the steps from the table's entry only act where
 // lambda - lambdas.front() rounded across a whole nm.
 size_t PiecewiseLinearSpectrum::Segment(Float lambda) const {
-    size_t last = lambdas.size() - 2;
+    auto atOrBelow = [&](int k) { return lambdas[size_t(k)] <= lambda; };
+    int size = int(lambdas.size());
     if (firstSegment.empty())
-        return size_t(detail::FindInterval(int(lambdas.size()),
-                                           [&](int k) { return lambdas[size_t(k)] <= lambda; }));
+        return size_t(detail::FindInterval(size, atOrBelow));
     size_t k = std::min(size_t(lambda - lambdas.front()), firstSegment.size() - 1);
-    size_t i = size_t(firstSegment[k]);
-    while (i > 0 && lambdas[i] > lambda) --i;
-    while (i < last && lambdas[i + 1] <= lambda) ++i;
-    return i;
+    return size_t(detail::FindIntervalFrom(firstSegment[k], size, atOrBelow));
 }
 
 Float PiecewiseLinearSpectrum::operator()(Float lambda) const {

@@ -236,6 +236,16 @@ PBRT_CPU_GPU inline int FindInterval(int size, const Predicate &pred) {
     if (count == 1 && pred(first)) ++first;
     return Clamp(first - 1, 0, size - 2);
 }
+
+// FindInterval's index, walked to from a guess in [0, size - 2] near it (a guide table's
+// entry): a step or two where the guess is close, the same index for any guess.
+template <typename Predicate>
+PBRT_CPU_GPU inline int FindIntervalFrom(int guess, int size, const Predicate &pred) {
+    int i = guess;
+    while (i > 0 && !pred(i)) --i;
+    while (i < size - 2 && pred(i + 1)) ++i;
+    return i;
+}
 }  // namespace detail
 
 }  // namespace pbrt

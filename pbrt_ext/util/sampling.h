@@ -276,10 +276,8 @@ class PiecewiseConstant1D {
         if (!(u >= 0 && u < 1))
             return FindPiece(u, 0, n - 1);
         int k = std::min(int(u * n), n - 1);
-        int o = FindPiece(u, guide[k], guide[k + 1]);
-        while (o > 0 && cdf[o] > u) --o;
-        while (o < n - 1 && cdf[o + 1] <= u) ++o;
-        return o;
+        return detail::FindIntervalFrom(FindPiece(u, guide[k], guide[k + 1]), int(cdf.size()),
+                                        [&](int i) { return cdf[i] <= u; });
     }
 
     std::vector<int> guide;  // guide[k]: FindPiece(k / n); n + 1 entries

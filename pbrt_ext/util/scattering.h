@@ -198,10 +198,10 @@ class TrowbridgeReitzDistribution {
     PBRT_CPU_GPU Float D(Vector3f w, Vector3f wm) const { return D(w, wm, D(wm)); }
     // The same, for a caller that already has D(wm).
     PBRT_CPU_GPU Float D(Vector3f w, Vector3f wm, Float Dwm) const {
-        return VisibleD(w, Lambda(w), wm, Dwm);
+        return D(w, Lambda(w), wm, Dwm);
     }
     // The same, for a caller that also has Lambda(w).
-    PBRT_CPU_GPU Float VisibleD(Vector3f w, Float lambda_w, Vector3f wm, Float Dwm) const {
+    PBRT_CPU_GPU Float D(Vector3f w, Float lambda_w, Vector3f wm, Float Dwm) const {
         return 1 / (1 + lambda_w) / AbsCosTheta(w) * Dwm * AbsDot(w, wm);
     }
 
@@ -209,7 +209,7 @@ class TrowbridgeReitzDistribution {
     PBRT_CPU_GPU Float PDF(Vector3f w, Vector3f wm) const { return D(w, wm); }
     PBRT_CPU_GPU Float PDF(Vector3f w, Vector3f wm, Float Dwm) const { return D(w, wm, Dwm); }
     PBRT_CPU_GPU Float PDF(Vector3f w, Float lambda_w, Vector3f wm, Float Dwm) const {
-        return VisibleD(w, lambda_w, wm, Dwm);
+        return D(w, lambda_w, wm, Dwm);
     }
 
     // Samples a normal visible from w; it is always in the upper hemisphere (w below the
