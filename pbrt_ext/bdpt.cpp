@@ -379,7 +379,7 @@ int BDPTIntegrator::RandomWalk(SampledWavelengths &lambda, RayDifferential ray, 
         ray = si.SpawnRay(ray, bs->wi, bs->flags, bs->eta);
         TransportMode reverse = mode == TransportMode::Radiance ? TransportMode::Importance
                                                                 : TransportMode::Radiance;
-        Float pdfRev = bsdf->PDF(bs->wi, wo, reverse);
+        Float pdfRev = prev.PdfRevIsRead() ? bsdf->PDF(bs->wi, wo, reverse) : 0;
         if (bs->IsSpecular()) {
             vertex.delta = true;
             pdfRev = pdfFwd = 0;
@@ -505,23 +505,23 @@ Float BDPTIntegrator::MISWeight(BDPTVertex *lightVertices, BDPTVertex *cameraVer
                *qsMinus = s > 1 ? &light(s - 2) : nullptr, *ptMinus = t > 1 ? &camera(t - 2) : nullptr;
 
     // Connection vertices that are not degenerate, and the reverse densities across the
-    // connection.
+    // connection (those the ratios below read).
     ScopedAssignment<bool> a2, a3;
     if (pt)
         a2 = {&pt->delta, false};
     if (qs)
         a3 = {&qs->delta, false};
     ScopedAssignment<Float> a4;
-    if (pt)
+    if (pt && pt->PdfRevIsRead())
         a4 = {&pt->pdfRev, s > 0 ? qs->PDF(*this, qsMinus, *pt) : pt->PDFLightOrigin(*this, *ptMinus)};
     ScopedAssignment<Float> a5;
-    if (ptMinus)
+    if (ptMinus && ptMinus->PdfRevIsRead())
         a5 = {&ptMinus->pdfRev, s > 0 ? pt->PDF(*this, qs, *ptMinus) : pt->PDFLight(*this, *ptMinus)};
     ScopedAssignment<Float> a6;
-    if (qs)
+    if (qs && qs->PdfRevIsRead())
         a6 = {&qs->pdfRev, pt->PDF(*this, ptMinus, *qs)};
     ScopedAssignment<Float> a7;
-    if (qsMinus)
+    if (qsMinus && qsMinus->PdfRevIsRead())
         a7 = {&qsMinus->pdfRev, qs->PDF(*this, pt, *qsMinus)};
 
     // The other strategies for the same path, as ratios of their densities to this one's.

@@ -61,6 +61,11 @@ struct BDPTVertex {
     bool IsDeltaLight() const {
         return type == VertexType::Light && lightIndex >= 0 && pbrt::IsDeltaLight(lightType);
     }
+    // Whether a MIS weight ever reads pdfRev here. Two kinds of subpath origin it never reads:
+    // the camera's, since no strategy samples the lens from the scene (light subpaths do not
+    // hit it), and a delta light's, since no camera subpath can hit one. Their reverse
+    // densities are not computed: at a layered BSDF each is a random walk of its own.
+    bool PdfRevIsRead() const { return type != VertexType::Camera && !IsDeltaLight(); }
     bool IsInfiniteLight() const {
         return type == VertexType::Light &&
                (lightType == LightType::Infinite || lightType == LightType::DeltaDirection);
