@@ -275,7 +275,17 @@ int BDPTIntegrator::RandomWalk(SampledWavelengths &lambda, RayDifferential ray, 
         return 0;
     int bounces = 0;
     bool anyNonSpecularBounces = false;
+    // The density of the direction leaving the last vertex. A layered BSDF's sample gives
+    // only a proportional one, and its PDF() is a random walk: that is evaluated once the
+    // direction has reached a vertex to store it in (none where a light subpath escapes, or a
+    // camera subpath escapes a scene without infinite lights).
     Float pdfFwd = pdf;
+    std::optional<Vector3f> wiPdfPending;
+    auto forwardDensity = [&](const BDPTVertex &prev) {
+        if (wiPdfPending)
+            pdfFwd = prev.bsdf->PDF(prev.si.wo, *std::exchange(wiPdfPending, std::nullopt), mode);
+        return pdfFwd;
+    };
     while (beta) {
         BDPTVertex &vertex = path[bounces], &prev = path[bounces - 1];
         ++rays.closest;
@@ -308,7 +318,7 @@ int BDPTIntegrator::RandomWalk(SampledWavelengths &lambda, RayDifferential ray, 
                         vertex.medium = ray.medium;
                         vertex.time = ray.time;
                         vertex.beta = beta;
-                        vertex.pdfFwd = prev.ConvertDensity(pdfFwd, vertex);
+                        vertex.pdfFwd = prev.ConvertDensity(forwardDensity(prev), vertex);
                         if (++bounces >= maxDepth) {
                             terminated = true;
                             return false;
@@ -341,9 +351,9 @@ int BDPTIntegrator::RandomWalk(SampledWavelengths &lambda, RayDifferential ray, 
         if (scattered)
             continue;
         if (!hit) {
-            // Camera subpaths end at the infinite lights they escape to.
-            if (mode == TransportMode::Radiance) {
-                vertex = EscapedVertex(ray, beta, pdfFwd);
+            // Camera subpaths end at the infinite lights they escape to, if there are any.
+            if (mode == TransportMode::Radiance && !scene.infiniteLights.empty()) {
+                vertex = EscapedVertex(ray, beta, forwardDensity(prev));
                 ++bounces;
             }
             break;
@@ -365,7 +375,7 @@ int BDPTIntegrator::RandomWalk(SampledWavelengths &lambda, RayDifferential ray, 
         vertex.n = si.n;
         vertex.time = si.time;
         vertex.beta = beta;
-        vertex.pdfFwd = prev.ConvertDensity(pdfFwd, vertex);
+        vertex.pdfFwd = prev.ConvertDensity(forwardDensity(prev), vertex);
         if (++bounces >= maxDepth)
             break;
         Vector3f wo = si.wo;
@@ -373,7 +383,9 @@ int BDPTIntegrator::RandomWalk(SampledWavelengths &lambda, RayDifferential ray, 
         pstd::optional<BSDFSample> bs = bsdf->Sample_f(wo, u, sampler.Get2D(), mode);
         if (!bs)
             break;
-        pdfFwd = bs->pdfIsProportional ? bsdf->PDF(wo, bs->wi, mode) : bs->pdf;
+        pdfFwd = bs->pdf;
+        if (bs->pdfIsProportional && !bs->IsSpecular())
+            wiPdfPending = bs->wi;
         anyNonSpecularBounces |= !bs->IsSpecular();
         beta *= bs->f * AbsDot(bs->wi, Vector3f(si.shading.n)) / bs->pdf;
         ray = si.SpawnRay(ray, bs->wi, bs->flags, bs->eta);
