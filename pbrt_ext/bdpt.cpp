@@ -487,12 +487,14 @@ SampledSpectrum BDPTIntegrator::ConnectToLight(SampledWavelengths &lambda, BDPTV
         return SampledSpectrum(0.f);
     BDPTVertex sampled = LightVertex(chosen->lightIndex, light.Type(), ls->pLight, ls->nLight, ls->uvLight,
                                      pt.time, pt.medium, ls->L / (ls->pdf * chosen->p), 0);
-    sampled.pdfFwd = sampled.PDFLightOrigin(*this, pt);
     SampledSpectrum L = pt.beta * pt.f(sampled, TransportMode::Radiance) * sampled.beta;
     if (pt.IsOnSurface())
         L *= AbsDot(ls->wi, Vector3f(pt.ns()));
     if (L)
         L *= Transmittance(scene, pt.SpawnRayTo(ls->pLight), ls->pLight, lambda, rays);
+    // Only the MIS weight reads it, and only of a contribution.
+    if (L)
+        sampled.pdfFwd = sampled.PDFLightOrigin(*this, pt);
     return WeightedByMIS(L, lightVertices, cameraVertices, &sampled, 1, t, misWeight);
 }
 
