@@ -43,7 +43,7 @@ struct SPPMPixel {
 // The visible points' grid: cells of the largest search radius over their bounds, hashed into
 // as many buckets as there are pixels, each listing the pixels whose search sphere overlaps a
 // cell that hashes to it (compressed rows: bucket b's pixels are entries[offsets[b]] to
-// entries[offsets[b + 1]]).
+// entries[offsets[b + 1]], in pixel order).
 class VisiblePointGrid {
   public:
     VisiblePointGrid(const std::vector<SPPMPixel> &pixels) : hashSize(pixels.size()) {
@@ -60,14 +60,28 @@ class VisiblePointGrid {
         int baseRes = int(std::min<Float>(maxDiagonal / maxRadius, 1 << 20));
         for (int i = 0; i < 3; ++i)
             resolution[i] = std::max(int(baseRes * diagonal[i] / maxDiagonal), 1);
-        // Counting sort of (bucket, pixel) pairs by bucket.
+        // Hashing the cells is most of the work (eight or more per visible point, every
+        // iteration): it runs in parallel, into each pixel's own range of cellBuckets.
+        std::vector<uint32_t> firstCell(pixels.size() + 1, 0);
+        ParallelOverPixels(pixels, [&](size_t i) { firstCell[i + 1] = CellCount(pixels[i]); });
+        for (size_t i = 0; i < pixels.size(); ++i)
+            firstCell[i + 1] += firstCell[i];
+        std::vector<uint32_t> cellBuckets(firstCell.back());
+        ParallelOverPixels(pixels, [&](size_t i) {
+            uint32_t k = firstCell[i];
+            ForEachCell(pixels[i], [&](Point3i cell) { cellBuckets[k++] = Bucket(cell); });
+        });
+        // Counting sort of the (bucket, pixel) pairs by bucket.
         offsets.assign(hashSize + 1, 0);
-        ForEachCell(pixels, [&](size_t bucket, int) { ++offsets[bucket + 1]; });
+        for (uint32_t bucket : cellBuckets)
+            ++offsets[bucket + 1];
         for (size_t b = 0; b < hashSize; ++b)
             offsets[b + 1] += offsets[b];
         entries.resize(offsets[hashSize]);
         std::vector<uint32_t> cursor(offsets.begin(), offsets.end() - 1);
-        ForEachCell(pixels, [&](size_t bucket, int pixel) { entries[cursor[bucket]++] = pixel; });
+        for (size_t i = 0; i < pixels.size(); ++i)
+            for (uint32_t k = firstCell[i]; k < firstCell[i + 1]; ++k)
+                entries[cursor[cellBuckets[k]]++] = uint32_t(i);
     }
 
     // Calls f(pixel index) for every visible point whose cell p is in (more may be listed than
@@ -95,26 +109,43 @@ class VisiblePointGrid {
         return inside;
     }
     // The hash scaled to [0, hashSize) by a multiplication (Lemire's range reduction) instead of
-    // a 64-bit division: the grid is rebuilt every iteration, on one thread, eight cells or more
-    // per visible point.
+    // a 64-bit division.
     size_t Bucket(Point3i cell) const {
         return size_t((Hash(cell.x, cell.y, cell.z) >> 32) * hashSize >> 32);  // hashSize < 2^32
     }
+    // The cells a pixel's search sphere overlaps (none without a visible point): their corners.
+    bool CellRange(const SPPMPixel &pixel, Point3i *pMin, Point3i *pMax) const {
+        if (!pixel.vp.beta)
+            return false;
+        Vector3f r(pixel.radius, pixel.radius, pixel.radius);
+        ToGrid(pixel.vp.p - r, pMin);
+        ToGrid(pixel.vp.p + r, pMax);
+        return true;
+    }
+    uint32_t CellCount(const SPPMPixel &pixel) const {
+        Point3i pMin, pMax;
+        if (!CellRange(pixel, &pMin, &pMax))
+            return 0;
+        Vector3i extent = pMax - pMin + Vector3i(1, 1, 1);
+        return uint32_t(extent.x) * uint32_t(extent.y) * uint32_t(extent.z);
+    }
     template <typename F>
-    void ForEachCell(const std::vector<SPPMPixel> &pixels, F f) const {
-        for (size_t i = 0; i < pixels.size(); ++i) {
-            const SPPMPixel &pixel = pixels[i];
-            if (!pixel.vp.beta)
-                continue;
-            Vector3f r(pixel.radius, pixel.radius, pixel.radius);
-            Point3i pMin, pMax;
-            ToGrid(pixel.vp.p - r, &pMin);
-            ToGrid(pixel.vp.p + r, &pMax);
-            for (int z = pMin.z; z <= pMax.z; ++z)
-                for (int y = pMin.y; y <= pMax.y; ++y)
-                    for (int x = pMin.x; x <= pMax.x; ++x)
-                        f(Bucket(Point3i(x, y, z)), int(i));
-        }
+    void ForEachCell(const SPPMPixel &pixel, F f) const {
+        Point3i pMin, pMax;
+        if (!CellRange(pixel, &pMin, &pMax))
+            return;
+        for (int z = pMin.z; z <= pMax.z; ++z)
+            for (int y = pMin.y; y <= pMax.y; ++y)
+                for (int x = pMin.x; x <= pMax.x; ++x)
+                    f(Point3i(x, y, z));
+    }
+    template <typename F>
+    static void ParallelOverPixels(const std::vector<SPPMPixel> &pixels, F f) {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels.size(), 256),
+                          [&](const tbb::blocked_range<size_t> &range) {
+                              for (size_t i = range.begin(); i < range.end(); ++i)
+                                  f(i);
+                          });
     }
 
     size_t hashSize;
