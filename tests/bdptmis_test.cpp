@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
@@ -85,8 +86,9 @@ std::string SceneText(const Variant &v) {
         "\"dielectric\" \"float roughness\" 0",
         "\"dielectric\" \"float roughness\" 0.25",
         "\"fabric\" \"rgb reflectance\" [0.8 0.5 0.3] \"float roughness\" 0.4",
+        "\"coateddiffuse\" \"rgb reflectance\" [0.5 0.4 0.3] \"float roughness\" 0.2",
     };
-    for (int i = 0; i < 6; ++i)
+    for (int i = 0; i < int(std::size(materials)); ++i)
         text += fmt::format("AttributeBegin\n  Material {}\n  Translate {} 0.45 {}\n"
                             "  Shape \"sphere\" \"float radius\" 0.45\nAttributeEnd\n",
                             materials[i], -2.5 + i, i % 2 ? 0.6 : -0.4);
@@ -165,25 +167,33 @@ double RelativeDifference(Float walk, Float fresh) {
 // where segments are short or meet a surface at a grazing angle. A wrong conversion (a missing
 // cosine or distance, the wrong mode or neighbour) is off on most vertices of its kind.
 using DensityDifferences = std::map<std::string, std::vector<double>>;
+constexpr const char *kLayeredKind = "through a layered BSDF";
 
 void CompareWalkDensities(const std::vector<BDPTVertex> &x, int s, const PathDensities &d,
                           DensityDifferences *differences) {
-    auto add = [&](const char *subpath, int k, const char *which, Float walk, Float fresh) {
-        (*differences)[fmt::format("{} subpath, {} vertex, {}", subpath, TypeName(x[k].type), which)]
-            .push_back(RelativeDifference(walk, fresh));
-    };
     int n = int(x.size());
+    // through: the vertex whose BSDF gave the density. A layered BSDF's density is an estimate
+    // seeded by its exact directions, which the fresh ones (from positions) do not repeat: its
+    // densities are two kinds of their own, pdfFwd and pdfRev "through a layered BSDF".
+    auto add = [&](const char *subpath, int k, const char *which, int through, Float walk, Float fresh) {
+        bool layered = through >= 0 && through < n && x[through].type == VertexType::Surface &&
+                       x[through].bsdf->ToString().find("Coated") != std::string::npos;
+        std::string kind = layered ? fmt::format("{}, {}", which, kLayeredKind)
+                                   : fmt::format("{} subpath, {} vertex, {}", subpath,
+                                                 TypeName(x[k].type), which);
+        (*differences)[kind].push_back(RelativeDifference(walk, fresh));
+    };
     // (A delta light's origin density is 0 by pbrt-v4's convention and the light's probability
     // in the walk; no weight reads it, since no strategy can hit such a light.)
     for (int k = x[0].IsDeltaLight() ? 1 : 0; k < s; ++k) {
-        add("light", k, "pdfFwd", x[k].pdfFwd, d.toCamera[k]);
+        add("light", k, "pdfFwd", k - 1, x[k].pdfFwd, d.toCamera[k]);
         if (k + 2 < s)
-            add("light", k, "pdfRev", x[k].pdfRev, d.toLight[k]);
+            add("light", k, "pdfRev", k + 1, x[k].pdfRev, d.toLight[k]);
     }
     for (int k = s + 1; k + 1 < n; ++k) {
-        add("camera", k, "pdfFwd", x[k].pdfFwd, d.toLight[k]);
+        add("camera", k, "pdfFwd", k + 1, x[k].pdfFwd, d.toLight[k]);
         if (k >= s + 2)
-            add("camera", k, "pdfRev", x[k].pdfRev, d.toCamera[k]);
+            add("camera", k, "pdfRev", k - 1, x[k].pdfRev, d.toCamera[k]);
     }
 }
 
@@ -193,7 +203,9 @@ class BDPTMISWeights : public testing::TestWithParam<Variant> {};
 // ratios; a strategy left out or counted twice, or a wrong density, is off by far more). For
 // each kind of walk density, the median differs from the fresh one by less than 0.1 % and 90 %
 // of them by less than 1 % (measured: medians up to 1.3e-4, 90th percentiles up to 3.7e-3, from
-// the offsets; a density 10 % off for one kind of vertex fails). Fixed seeds.
+// the offsets; a density 10 % off for one kind of vertex fails). A layered BSDF's densities are
+// estimates, which the offsets reseed: their median differs by less than 30 % (measured 8-14 %;
+// a walk that stores its sample's proportional pdf instead, 80-87 %). Fixed seeds.
 TEST_P(BDPTMISWeights, SumToOneOnEveryPathAndTheWalksStoreTheirDensities) {
     const Variant &v = GetParam();
     std::filesystem::path folder = TestFolder(std::string("bdptmis_") + v.name);
@@ -260,12 +272,16 @@ TEST_P(BDPTMISWeights, SumToOneOnEveryPathAndTheWalksStoreTheirDensities) {
         double p90 = differences[differences.size() * 9 / 10];
         std::printf("  walk densities, %s: %zu, median difference %.1e, 90th percentile %.1e\n",
                     kind.c_str(), differences.size(), median, p90);
-        EXPECT_LT(median, 1e-3) << kind;
-        EXPECT_LT(p90, 1e-2) << kind;
+        if (kind.find(kLayeredKind) != std::string::npos) {
+            EXPECT_LT(median, 0.3) << kind;
+        } else {
+            EXPECT_LT(median, 1e-3) << kind;
+            EXPECT_LT(p90, 1e-2) << kind;
+        }
     }
     // Every kind of vertex the weights treat differently was met.
     EXPECT_GT(paths, 10000);
-    EXPECT_EQ(walkDensities.size(), v.fog ? 10u : 6u);
+    EXPECT_EQ(walkDensities.size(), v.fog ? 12u : 8u);
     EXPECT_GT(delta, 100);
     EXPECT_GT(fromSpot, 100);
     EXPECT_GT(fromArea, 100);
