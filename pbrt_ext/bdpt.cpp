@@ -268,137 +268,163 @@ int BDPTIntegrator::GenerateLightSubpath(SampledWavelengths &lambda, Sampler &sa
     return nVertices + 1;
 }
 
+// A subpath's random walk in progress: its ray and throughput, and path[bounces], the vertex it
+// will make next (path[bounces - 1] made the ray: the subpath's origin when bounces is 0).
+struct BDPTIntegrator::Walk {
+    RayDifferential ray;
+    SampledSpectrum beta;
+    TransportMode mode;
+    int maxDepth;
+    BDPTVertex *path;
+    int bounces;
+    bool anyNonSpecularBounces;
+    // The density of the ray's direction from path[bounces - 1]. A layered BSDF's sample gives
+    // only a proportional one, and its PDF() is a random walk: that is evaluated once the
+    // direction has reached a vertex to store it in (none where a light subpath escapes, or a
+    // camera subpath escapes a scene without infinite lights).
+    Float pdfFwd;
+    std::optional<Vector3f> wiPdfPending;
+
+    BDPTVertex &Next() { return path[bounces]; }
+    BDPTVertex &Last() { return path[bounces - 1]; }
+    Float ForwardDensity() {
+        if (wiPdfPending)
+            pdfFwd = Last().bsdf->PDF(Last().si.wo, *std::exchange(wiPdfPending, std::nullopt), mode);
+        return pdfFwd;
+    }
+};
+
 int BDPTIntegrator::RandomWalk(SampledWavelengths &lambda, RayDifferential ray, Sampler &sampler,
                                SampledSpectrum beta, Float pdf, int maxDepth, TransportMode mode,
                                RayCounts &rays, BDPTVertex *path) const {
     if (maxDepth == 0)
         return 0;
-    int bounces = 0;
-    bool anyNonSpecularBounces = false;
-    // The density of the direction leaving the last vertex. A layered BSDF's sample gives
-    // only a proportional one, and its PDF() is a random walk: that is evaluated once the
-    // direction has reached a vertex to store it in (none where a light subpath escapes, or a
-    // camera subpath escapes a scene without infinite lights).
-    Float pdfFwd = pdf;
-    std::optional<Vector3f> wiPdfPending;
-    auto forwardDensity = [&](const BDPTVertex &prev) {
-        if (wiPdfPending)
-            pdfFwd = prev.bsdf->PDF(prev.si.wo, *std::exchange(wiPdfPending, std::nullopt), mode);
-        return pdfFwd;
-    };
-    while (beta) {
-        BDPTVertex &vertex = path[bounces], &prev = path[bounces - 1];
+    Walk walk{.ray = ray, .beta = beta, .mode = mode, .maxDepth = maxDepth, .path = path,
+              .bounces = 0, .anyNonSpecularBounces = false, .pdfFwd = pdf, .wiPdfPending = {}};
+    while (walk.beta) {
         ++rays.closest;
-        pstd::optional<ShapeIntersection> hit = scene.Intersect(ray);
-        bool scattered = false, terminated = false;
-        if (ray.medium >= 0) {
-            // Delta tracking: absorption ends the subpath, a real collision makes a medium
-            // vertex, null collisions pass on.
-            Float tMax = hit ? hit->tHit : Infinity;
-            RNG rng(Hash(ray.o, tMax), Hash(ray.d));
-            SampledSpectrum T_majEnd = scene.media[ray.medium].SampleT_maj(
-                ray, tMax, sampler.Get1D(), rng, lambda,
-                [&](Point3f p, const MediumProperties &mp, SampledSpectrum sigma_maj,
-                    SampledSpectrum T_maj) {
-                    Float pAbsorb = mp.sigma_a[0] / sigma_maj[0];
-                    Float pScatter = mp.sigma_s[0] / sigma_maj[0];
-                    Float pNull = std::max<Float>(0, 1 - pAbsorb - pScatter);
-                    Float um = sampler.Get1D() * (pAbsorb + pScatter + pNull);
-                    if (um < pAbsorb) {
-                        terminated = true;
-                        return false;
-                    }
-                    if (um < pAbsorb + pScatter) {
-                        beta *= T_maj * mp.sigma_s / (T_maj[0] * mp.sigma_s[0]);
-                        vertex = BDPTVertex();
-                        vertex.type = VertexType::Medium;
-                        vertex.p = p;
-                        vertex.wo = -Normalize(ray.d);
-                        vertex.phase = mp.phase;
-                        vertex.medium = ray.medium;
-                        vertex.time = ray.time;
-                        vertex.beta = beta;
-                        vertex.pdfFwd = prev.ConvertDensity(forwardDensity(prev), vertex);
-                        if (++bounces >= maxDepth) {
-                            terminated = true;
-                            return false;
-                        }
-                        std::optional<PhaseFunctionSample> ps =
-                            vertex.phase.Sample_p(vertex.wo, sampler.Get2D());
-                        if (!ps || ps->pdf == 0) {
-                            terminated = true;
-                            return false;
-                        }
-                        pdfFwd = ps->pdf;
-                        beta *= ps->p / ps->pdf;
-                        ray = RayDifferential(Ray(p, ps->wi, ray.medium, ray.time));
-                        anyNonSpecularBounces = true;
-                        prev.pdfRev = vertex.ConvertDensity(ps->pdf, prev);
-                        scattered = true;
-                        return false;
-                    }
-                    SampledSpectrum sigma_n = ClampZero(sigma_maj - mp.sigma_a - mp.sigma_s);
-                    Float pdfNull = T_maj[0] * sigma_n[0];
-                    beta = pdfNull == 0 ? SampledSpectrum(0.f) : beta * T_maj * sigma_n / pdfNull;
-                    return bool(beta);
-                },
-                MediumQuery::NoEmission);
-            if (!scattered)
-                beta *= T_majEnd / T_majEnd[0];
+        pstd::optional<ShapeIntersection> hit = scene.Intersect(walk.ray);
+        if (walk.ray.medium >= 0) {
+            MediumStep step = TrackThroughMedium(walk, hit ? hit->tHit : Infinity, lambda, sampler);
+            if (step == MediumStep::Ended)
+                return walk.bounces;
+            if (step == MediumStep::Scattered)
+                continue;
         }
-        if (terminated)
-            return bounces;
-        if (scattered)
-            continue;
         if (!hit) {
             // Camera subpaths end at the infinite lights they escape to, if there are any.
             if (mode == TransportMode::Radiance && !scene.infiniteLights.empty()) {
-                vertex = EscapedVertex(ray, beta, forwardDensity(prev));
-                ++bounces;
+                walk.Next() = EscapedVertex(walk.ray, walk.beta, walk.ForwardDensity());
+                ++walk.bounces;
             }
             break;
         }
         SurfaceInteraction &si = hit->intr;
-        scene.ComputeDifferentials(si, ray);
+        scene.ComputeDifferentials(si, walk.ray);
         std::optional<BSDF> bsdf = scene.GetBSDF(si, lambda);
         if (!bsdf) {
-            ray = RayDifferential(si.SpawnRay(ray.d));  // an interface between media
+            walk.ray = RayDifferential(si.SpawnRay(walk.ray.d));  // an interface between media
             continue;
         }
-        if (options.regularize && anyNonSpecularBounces)
-            bsdf->Regularize();
-        vertex = BDPTVertex();
-        vertex.type = VertexType::Surface;
-        vertex.si = si;
-        vertex.bsdf = *bsdf;
-        vertex.p = si.p;
-        vertex.n = si.n;
-        vertex.time = si.time;
-        vertex.beta = beta;
-        vertex.pdfFwd = prev.ConvertDensity(forwardDensity(prev), vertex);
-        if (++bounces >= maxDepth)
+        if (!ScatterAtSurface(walk, si, *bsdf, sampler))
             break;
-        Vector3f wo = si.wo;
-        Float u = sampler.Get1D();
-        pstd::optional<BSDFSample> bs = bsdf->Sample_f(wo, u, sampler.Get2D(), mode);
-        if (!bs)
-            break;
-        pdfFwd = bs->pdf;
-        if (bs->pdfIsProportional && !bs->IsSpecular())
-            wiPdfPending = bs->wi;
-        anyNonSpecularBounces |= !bs->IsSpecular();
-        beta *= bs->f * AbsDot(bs->wi, Vector3f(si.shading.n)) / bs->pdf;
-        ray = si.SpawnRay(ray, bs->wi, bs->flags, bs->eta);
-        TransportMode reverse = mode == TransportMode::Radiance ? TransportMode::Importance
-                                                                : TransportMode::Radiance;
-        Float pdfRev = prev.PdfRevIsRead() ? bsdf->PDF(bs->wi, wo, reverse) : 0;
-        if (bs->IsSpecular()) {
-            vertex.delta = true;
-            pdfRev = pdfFwd = 0;
-        }
-        prev.pdfRev = vertex.ConvertDensity(pdfRev, prev);
     }
-    return bounces;
+    return walk.bounces;
+}
+
+BDPTIntegrator::MediumStep BDPTIntegrator::TrackThroughMedium(Walk &walk, Float tMax,
+                                                              const SampledWavelengths &lambda,
+                                                              Sampler &sampler) const {
+    // Absorption ends the subpath, a real collision makes a medium vertex, null collisions
+    // pass on.
+    MediumStep step = MediumStep::PassedThrough;
+    const Ray &ray = walk.ray;
+    RNG rng(Hash(ray.o, tMax), Hash(ray.d));
+    SampledSpectrum T_majEnd = scene.media[ray.medium].SampleT_maj(
+        ray, tMax, sampler.Get1D(), rng, lambda,
+        [&](Point3f p, const MediumProperties &mp, SampledSpectrum sigma_maj, SampledSpectrum T_maj) {
+            Float pAbsorb = mp.sigma_a[0] / sigma_maj[0];
+            Float pScatter = mp.sigma_s[0] / sigma_maj[0];
+            Float pNull = std::max<Float>(0, 1 - pAbsorb - pScatter);
+            Float um = sampler.Get1D() * (pAbsorb + pScatter + pNull);
+            if (um < pAbsorb) {
+                step = MediumStep::Ended;
+                return false;
+            }
+            if (um < pAbsorb + pScatter) {
+                walk.beta *= T_maj * mp.sigma_s / (T_maj[0] * mp.sigma_s[0]);
+                BDPTVertex &vertex = walk.Next();
+                vertex = BDPTVertex();
+                vertex.type = VertexType::Medium;
+                vertex.p = p;
+                vertex.wo = -Normalize(ray.d);
+                vertex.phase = mp.phase;
+                vertex.medium = ray.medium;
+                vertex.time = ray.time;
+                vertex.beta = walk.beta;
+                vertex.pdfFwd = walk.Last().ConvertDensity(walk.ForwardDensity(), vertex);
+                BDPTVertex &prev = walk.Last();
+                step = MediumStep::Ended;
+                if (++walk.bounces >= walk.maxDepth)
+                    return false;
+                std::optional<PhaseFunctionSample> ps = vertex.phase.Sample_p(vertex.wo, sampler.Get2D());
+                if (!ps || ps->pdf == 0)
+                    return false;
+                walk.pdfFwd = ps->pdf;
+                walk.beta *= ps->p / ps->pdf;
+                walk.ray = RayDifferential(Ray(p, ps->wi, ray.medium, ray.time));
+                walk.anyNonSpecularBounces = true;
+                prev.pdfRev = vertex.ConvertDensity(ps->pdf, prev);
+                step = MediumStep::Scattered;
+                return false;
+            }
+            SampledSpectrum sigma_n = ClampZero(sigma_maj - mp.sigma_a - mp.sigma_s);
+            Float pdfNull = T_maj[0] * sigma_n[0];
+            walk.beta = pdfNull == 0 ? SampledSpectrum(0.f) : walk.beta * T_maj * sigma_n / pdfNull;
+            return bool(walk.beta);
+        },
+        MediumQuery::NoEmission);
+    if (step == MediumStep::PassedThrough)
+        walk.beta *= T_majEnd / T_majEnd[0];
+    return step;
+}
+
+bool BDPTIntegrator::ScatterAtSurface(Walk &walk, const SurfaceInteraction &si, BSDF bsdf,
+                                      Sampler &sampler) const {
+    if (options.regularize && walk.anyNonSpecularBounces)
+        bsdf.Regularize();
+    BDPTVertex &vertex = walk.Next(), &prev = walk.Last();
+    vertex = BDPTVertex();
+    vertex.type = VertexType::Surface;
+    vertex.si = si;
+    vertex.bsdf = bsdf;
+    vertex.p = si.p;
+    vertex.n = si.n;
+    vertex.time = si.time;
+    vertex.beta = walk.beta;
+    vertex.pdfFwd = prev.ConvertDensity(walk.ForwardDensity(), vertex);
+    if (++walk.bounces >= walk.maxDepth)
+        return false;
+    Vector3f wo = si.wo;
+    Float u = sampler.Get1D();
+    pstd::optional<BSDFSample> bs = bsdf.Sample_f(wo, u, sampler.Get2D(), walk.mode);
+    if (!bs)
+        return false;
+    walk.pdfFwd = bs->pdf;
+    if (bs->pdfIsProportional && !bs->IsSpecular())
+        walk.wiPdfPending = bs->wi;
+    walk.anyNonSpecularBounces |= !bs->IsSpecular();
+    walk.beta *= bs->f * AbsDot(bs->wi, Vector3f(si.shading.n)) / bs->pdf;
+    walk.ray = si.SpawnRay(walk.ray, bs->wi, bs->flags, bs->eta);
+    TransportMode reverse = walk.mode == TransportMode::Radiance ? TransportMode::Importance
+                                                                 : TransportMode::Radiance;
+    Float pdfRev = prev.PdfRevIsRead() ? bsdf.PDF(bs->wi, wo, reverse) : 0;
+    if (bs->IsSpecular()) {
+        vertex.delta = true;
+        pdfRev = walk.pdfFwd = 0;
+    }
+    prev.pdfRev = vertex.ConvertDensity(pdfRev, prev);
+    return true;
 }
 
 // Strategies s = 1 and t = 1 sample the endpoint they connect to; it is a local vertex, built

@@ -56,6 +56,15 @@ class BDPTIntegrator {
     int RandomWalk(SampledWavelengths &lambda, RayDifferential ray, Sampler &sampler,
                    SampledSpectrum beta, Float pdf, int maxDepth, TransportMode mode,
                    RayCounts &rays, BDPTVertex *path) const;
+    struct Walk;  // bdpt.cpp: RandomWalk's state
+    enum class MediumStep { PassedThrough, Scattered, Ended };
+    // Delta tracking along the walk's ray up to tMax: a real collision makes a medium vertex.
+    MediumStep TrackThroughMedium(Walk &walk, Float tMax, const SampledWavelengths &lambda,
+                                  Sampler &sampler) const;
+    // Makes the surface vertex at si and samples the walk's next direction from it; false
+    // where the walk ends there.
+    bool ScatterAtSurface(Walk &walk, const SurfaceInteraction &si, BSDF bsdf,
+                          Sampler &sampler) const;
     SampledSpectrum ConnectBDPT(SampledWavelengths &lambda, BDPTVertex *lightVertices,
                                 BDPTVertex *cameraVertices, int s, int t, Sampler &sampler,
                                 RayCounts &rays, pstd::optional<Point2f> *pRaster,
