@@ -353,7 +353,7 @@ BDPTIntegrator::MediumStep BDPTIntegrator::TrackThroughMedium(Walk &walk, Float 
             }
             if (um < pAbsorb + pScatter) {
                 walk.beta *= T_maj * mp.sigma_s / (T_maj[0] * mp.sigma_s[0]);
-                BDPTVertex &vertex = walk.Next();
+                BDPTVertex &vertex = walk.Next(), &prev = walk.Last();
                 vertex = BDPTVertex();
                 vertex.type = VertexType::Medium;
                 vertex.p = p;
@@ -362,8 +362,8 @@ BDPTIntegrator::MediumStep BDPTIntegrator::TrackThroughMedium(Walk &walk, Float 
                 vertex.medium = ray.medium;
                 vertex.time = ray.time;
                 vertex.beta = walk.beta;
-                vertex.pdfFwd = walk.Last().ConvertDensity(walk.ForwardDensity(), vertex);
-                BDPTVertex &prev = walk.Last();
+                vertex.pdfFwd = prev.ConvertDensity(walk.ForwardDensity(), vertex);
+                // The subpath ends at this vertex unless it samples a direction on.
                 step = MediumStep::Ended;
                 if (++walk.bounces >= walk.maxDepth)
                     return false;
