@@ -21,10 +21,10 @@
 // working folder); it is rendered again when missing or older than a scene file of its folder (the
 // cylinders share an include). It uses another seed than the sweep, so that no sweep image shares
 // its samples with the reference.
+#include "pbrt_ext/images/image.h"
 #include "pbrt_ext/render.h"
 #include "pbrt_ext/scene.h"
-#include "pbrt_ext/sceneloader.h"
-#include "pbrt_ext/util/image.h"
+#include "pbrt_ext/scene/sceneloader.h"
 
 #include <benchmark/benchmark.h>
 

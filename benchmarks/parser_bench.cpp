@@ -1,7 +1,7 @@
 // Throughput of the scene-file readers on large meshes: a trianglemesh written inline in a scene
 // file (tokenizer, parser and scene description) and a binary PLY decoded from memory. Counter:
 // bytes/s of input. The parser's speed target lives here, not in a timed test.
-#include "pbrt_ext/scenedescription.h"
+#include "pbrt_ext/scene/scenedescription.h"
 #include "pbrt_ext/util/ply.h"
 
 #include <benchmark/benchmark.h>

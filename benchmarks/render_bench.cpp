@@ -1,14 +1,14 @@
 // Renderer throughput: camera samples per second and rays per second of the path tracer for 1 ... all
-// threads, on the Cornell box of tests/scenes.h (256 x 256, 64 spp, maxdepth 5, as the issue
+// threads, on the Cornell box of tests/support/scenes.h (256 x 256, 64 spp, maxdepth 5, as the issue
 // specifies) with diffuse and with fabric boxes, and on the fabric scenes of scenes/ loaded through
 // LoadScene, at a sample count that keeps one single-threaded render near 5 s; and of bdpt and
 // lightpath on the diffuse box and bdpt on scenes/caustic-fabric.pbrt, at 16 spp. Scene creation (and
 // file loading) is not timed. With PBRT_EXT_BENCH_IMAGES set to a folder, each benchmark also writes
 // the image it rendered there as PNG.
-#include "scenes.h"
+#include "tests/support/scenes.h"
 
 #include "pbrt_ext/render.h"
-#include "pbrt_ext/sceneloader.h"
+#include "pbrt_ext/scene/sceneloader.h"
 
 #include <benchmark/benchmark.h>
 

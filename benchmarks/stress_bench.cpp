@@ -1,11 +1,11 @@
 // Throughput of FabricBxDF on adversarial inputs, and a count of what it must never return. Inputs
-// come from tests/fabric_adversarial.h, the generator of tests/fabric_stress_test.cpp.
+// come from tests/support/fabric_adversarial.h, the generator of tests/bxdfs/fabric_stress_test.cpp.
 //
 // They are generated once into a buffer (kConfigurations BxDFs, kCases calls of each kind, each on a
 // random one of them), then at least kCalls calls (f + PDF + Sample_f per case) are timed over it.
 // Counters: "calls/s"; "nonfinite" (NaN or Inf in f, PDF or a sample's f, pdf or wi) and "negative"
 // (a negative f or pdf), both of which must be 0.
-#include "fabric_adversarial.h"
+#include "tests/support/fabric_adversarial.h"
 
 #include <benchmark/benchmark.h>
 

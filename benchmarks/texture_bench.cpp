@@ -1,4 +1,4 @@
-// Image texture lookups per second for each MIP map filter (util/mipmap.h), and the time to build
+// Image texture lookups per second for each MIP map filter (textures/mipmap.h), and the time to build
 // a pyramid: what filtering costs a shading point.
 //
 //   build/release/benchmarks/texture_bench
@@ -6,7 +6,7 @@
 // The image is 1024 x 1024 and 8-bit sRGB (as most scene textures are); lookups are at random
 // points with a random footprint from a tenth of a texel to 64 texels wide, anisotropic up to 8:1,
 // the spread a camera's differentials give over a receding floor.
-#include "pbrt_ext/util/mipmap.h"
+#include "pbrt_ext/textures/mipmap.h"
 
 #include <benchmark/benchmark.h>
 

@@ -8,13 +8,13 @@
 // recorded rays through EmbreeAggregate::Traverse, which skips building the interaction (Embree's
 // rays/s, also split into closest-hit and shadow rays, and the camera's own rays, one per pixel).
 //
-// Scenes: the Cornell box of tests/scenes.h and scenes/*.pbrt below; PBRT_EXT_TRAVERSAL_SCENES may
+// Scenes: the Cornell box of tests/support/scenes.h and scenes/*.pbrt below; PBRT_EXT_TRAVERSAL_SCENES may
 // add pbrt files (a colon-separated list), e.g. the public scenes of docs/benchmarks.md.
-#include "scenes.h"
+#include "tests/support/scenes.h"
 
-#include "pbrt_ext/raylog.h"
 #include "pbrt_ext/render.h"
-#include "pbrt_ext/sceneloader.h"
+#include "pbrt_ext/scene/sceneloader.h"
+#include "pbrt_ext/shapes/raylog.h"
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>

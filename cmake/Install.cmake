@@ -12,7 +12,7 @@ install(TARGETS pbrt_ext fabric pbrt_ext_cli
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-# Where util/imagecodec.cpp looks for it from an installed executable (bin/../<libdir>/pbrt_ext).
+# Where images/imagecodec.cpp looks for it from an installed executable (bin/../<libdir>/pbrt_ext).
 install(TARGETS pbrt_ext_imagecodec LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/pbrt_ext)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/pbrt_ext/
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/pbrt_ext

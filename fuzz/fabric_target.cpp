@@ -18,7 +18,7 @@
 #include "fuzz/fuzz_targets.h"
 
 #include "pbrt_ext/bxdfs/bxdfs.h"
-#include "pbrt_ext/create.h"
+#include "pbrt_ext/scene/create.h"
 
 #include <cmath>
 #include <cstring>

@@ -23,11 +23,11 @@ void FuzzPly(std::span<const uint8_t> data);
 // An image file through Image::Read: the first byte picks the file extension, the rest is the file.
 void FuzzImage(std::span<const uint8_t> data);
 // PNG and EXR through Image::Read (first byte even: EXR, odd: PNG; the rest is the file, its
-// signature restored), the formats the project decodes itself (util/pngfile.cpp,
-// util/exrfile.cpp): without OpenImageIO's plugins, many times the inputs per second of the image
+// signature restored), the formats the project decodes itself (images/pngfile.cpp,
+// images/exrfile.cpp): without OpenImageIO's plugins, many times the inputs per second of the image
 // target.
 void FuzzPngExr(std::span<const uint8_t> data);
-// The image target's inputs that stb_image decodes (util/stbfile.cpp: TGA, JPEG, BMP, PNM and
+// The image target's inputs that stb_image decodes (images/stbfile.cpp: TGA, JPEG, BMP, PNM and
 // HDR among its extensions), and only those: also without OpenImageIO's plugins.
 void FuzzStb(std::span<const uint8_t> data);
 // FabricBxDF built from fabric-material parameters, evaluated and sampled at one pair of

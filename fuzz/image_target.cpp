@@ -1,15 +1,15 @@
-// The image target: Image::Read, which decodes PNG through libpng (util/pngfile.cpp), EXR through
-// OpenEXR (util/exrfile.cpp), TGA, JPEG, BMP, PNM and HDR through stb_image (util/stbfile.cpp)
-// and the other formats through the OpenImageIO module (util/imagecodec.h). Only the project's code is instrumented for coverage; libpng, OpenEXR,
+// The image target: Image::Read, which decodes PNG through libpng (images/pngfile.cpp), EXR through
+// OpenEXR (images/exrfile.cpp), TGA, JPEG, BMP, PNM and HDR through stb_image (images/stbfile.cpp)
+// and the other formats through the OpenImageIO module (images/imagecodec.h). Only the project's code is instrumented for coverage; libpng, OpenEXR,
 // OpenImageIO and the codec libraries are Debian's builds, so the fuzzer steers by our code alone
 // and reports their crashes without guidance into them.
 #include "fuzz/finding.h"
 #include "fuzz/fuzz_targets.h"
 #include "fuzz/scratch.h"
 
-#include "pbrt_ext/util/image.h"
-#include "pbrt_ext/util/imagecodec.h"
-#include "pbrt_ext/util/stbfile.h"
+#include "pbrt_ext/images/image.h"
+#include "pbrt_ext/images/imagecodec.h"
+#include "pbrt_ext/images/stbfile.h"
 
 #include <algorithm>
 #include <iterator>

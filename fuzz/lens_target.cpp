@@ -7,7 +7,7 @@
 #include "fuzz/fuzz_targets.h"
 #include "fuzz/scratch.h"
 
-#include "pbrt_ext/realisticcamera.h"
+#include "pbrt_ext/cameras/realisticcamera.h"
 #include "pbrt_ext/util/floatfile.h"
 
 #include <cmath>

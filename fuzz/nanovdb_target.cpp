@@ -6,7 +6,7 @@
 #include "fuzz/fuzz_targets.h"
 #include "fuzz/scratch.h"
 
-#include "pbrt_ext/sceneloader.h"
+#include "pbrt_ext/scene/sceneloader.h"
 #include "pbrt_ext/util/log.h"
 
 #include <string>

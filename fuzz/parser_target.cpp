@@ -3,7 +3,7 @@
 #include "fuzz/fuzz_targets.h"
 #include "fuzz/scratch.h"
 
-#include "pbrt_ext/scenedescription.h"
+#include "pbrt_ext/scene/scenedescription.h"
 #include "pbrt_ext/util/log.h"
 
 #include <string>

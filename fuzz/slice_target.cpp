@@ -6,7 +6,7 @@
 #include "fuzz/fuzz_targets.h"
 #include "fuzz/scratch.h"
 
-#include "pbrt_ext/filmslice.h"
+#include "pbrt_ext/film/filmslice.h"
 
 #include <algorithm>
 #include <iterator>

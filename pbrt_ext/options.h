@@ -3,7 +3,7 @@
 
 #include "pbrt_ext/bxdfs/fabric.h"
 #include "pbrt_ext/bxdfs/layered.h"
-#include "pbrt_ext/integrators.h"
+#include "pbrt_ext/integrators/path.h"
 #include "pbrt_ext/util/bounds.h"
 
 #include <optional>

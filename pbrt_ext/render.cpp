@@ -1,11 +1,11 @@
 #include "pbrt_ext/render.h"
 
-#include "pbrt_ext/bdpt.h"
-#include "pbrt_ext/integrators.h"
-#include "pbrt_ext/lightpath.h"
-#include "pbrt_ext/sppm.h"
+#include "pbrt_ext/integrators/bdpt.h"
+#include "pbrt_ext/integrators/lightpath.h"
+#include "pbrt_ext/integrators/path.h"
+#include "pbrt_ext/integrators/sppm.h"
+#include "pbrt_ext/integrators/volpath.h"
 #include "pbrt_ext/scene.h"
-#include "pbrt_ext/volpath.h"
 #include "pbrt_ext/util/log.h"
 #include "pbrt_ext/util/progressreporter.h"
 

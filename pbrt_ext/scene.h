@@ -5,16 +5,16 @@
 // aggregate, one area light per emissive primitive, and the light sampler the lights need.
 #pragma once
 
-#include "pbrt_ext/aggregate.h"
-#include "pbrt_ext/cameras.h"
-#include "pbrt_ext/film.h"
-#include "pbrt_ext/integrators.h"
-#include "pbrt_ext/lights.h"
-#include "pbrt_ext/lightsamplers.h"
-#include "pbrt_ext/materials.h"
-#include "pbrt_ext/media.h"
-#include "pbrt_ext/samplers.h"
-#include "pbrt_ext/shapes.h"
+#include "pbrt_ext/cameras/cameras.h"
+#include "pbrt_ext/film/film.h"
+#include "pbrt_ext/integrators/path.h"
+#include "pbrt_ext/lights/lights.h"
+#include "pbrt_ext/lights/lightsamplers.h"
+#include "pbrt_ext/materials/materials.h"
+#include "pbrt_ext/media/media.h"
+#include "pbrt_ext/samplers/samplers.h"
+#include "pbrt_ext/shapes/aggregate.h"
+#include "pbrt_ext/shapes/shapes.h"
 
 #include <map>
 #include <memory>

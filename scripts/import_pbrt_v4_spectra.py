@@ -1,4 +1,4 @@
-"""Writes pbrt_ext/namedspectradata.cpp (pbrt-v4's named spectra as tables) and
+"""Writes pbrt_ext/spectra/namedspectradata.cpp (pbrt-v4's named spectra as tables) and
 pbrt_ext/util/cietables.h (the CIE 1931 matching functions at 1 nm and illuminant D65, as pbrt-v4
 tabulates them).
 
@@ -8,7 +8,7 @@ Usage: python3 scripts/import_pbrt_v4_spectra.py PBRT_V4_SOURCE
 The named spectra are measured data (metals' complex refractive indices, glasses' refractive
 indices from refractiveindex.info, CIE standard illuminants, ACES D60): facts, carried over
 value for value so that a scene naming one renders as in pbrt-v4. The camera sensor curves,
-pbrt-v4's other named spectra, are in pbrt_ext/sensordata.cpp. Deterministic: rerunning it on the
+pbrt-v4's other named spectra, are in pbrt_ext/spectra/sensordata.cpp. Deterministic: rerunning it on the
 same source reproduces the file.
 """
 import os
@@ -96,7 +96,7 @@ def main():
         "// Sources as pbrt-v4 gives them: the CIE's standard illuminants (CIE 15), ACES D60 (Academy",
         "// S-2014-004, via gist aforsythe/4df4e5377853df76a5a83a3c001c7eeb), glasses from",
         "// refractiveindex.info (CC0), metals' complex refractive indices as tabulated in pbrt-v3/v4.",
-        '#include "pbrt_ext/namedspectradata.h"',
+        '#include "pbrt_ext/spectra/namedspectradata.h"',
         "",
         "namespace pbrt {",
         "",

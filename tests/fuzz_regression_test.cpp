@@ -7,7 +7,7 @@
 #include "fuzz/fuzz_targets.h"
 #include "fuzz/scratch.h"
 
-#include "pbrt_ext/util/image.h"
+#include "pbrt_ext/images/image.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -13,7 +13,7 @@
 // saturated channel (the red plane's green), far more than the Monte Carlo error here.
 #include "pbrt_ext/render.h"
 #include "pbrt_ext/scene.h"
-#include "pbrt_ext/sceneloader.h"
+#include "pbrt_ext/scene/sceneloader.h"
 #include "pbrt_ext/util/log.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // End to end: analytic scenes through every integrator strategy, the strategies against each other,
 // thread-count invariance, and no NaN anywhere.
-#include "scenes.h"
+#include "tests/support/scenes.h"
 
 #include "pbrt_ext/bxdfs/fabric_albedo.h"
 #include "pbrt_ext/render.h"
@@ -22,7 +22,7 @@ constexpr double kSigmas = 3;
 // Float arithmetic along a path: the floor of the tolerance where the estimator has no variance.
 constexpr double kFloatFloor = 1e-5;
 // The RGB -> spectrum -> RGB round trip of the sigmoid table, per channel for an RGB in [0, 1]
-// (tests/rgbtospectrum_test.cpp). An "rgb" emitter's spectrum is the table's fit to rgb / (2 max
+// (tests/spectra/rgbtospectrum_test.cpp). An "rgb" emitter's spectrum is the table's fit to rgb / (2 max
 // rgb) times that scale, so its round trip is within kRGBRoundTrip * 2 max(rgb) (times the light's
 // scale).
 constexpr double kRGBRoundTrip = 1e-3;

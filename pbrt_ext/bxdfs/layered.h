@@ -35,7 +35,7 @@
 //    against the presampled wis with the density wis has for the same inner direction,
 //    exitInterface.PDF(wi, -w, adjoint mode); pbrt-v4 uses PDF(-w, wi, mode), the density
 //    of the reverse move, so its two weights need not sum to one and its f() is biased
-//    (LayeredExitMIS below; tests/layered_reference_test.cpp measures both against the
+//    (LayeredExitMIS below; tests/bxdfs/layered_reference_test.cpp measures both against the
 //    layer traced as explicit geometry);
 //  - the seeds hash the arguments alone (pbrt-v4 also hashes its global --seed option);
 //  - f()'s walk plays Russian roulette from its second event on, pbrt-v4's from its fifth:
@@ -74,7 +74,7 @@ enum class LayeredExitMIS {
     InnerDirection,
     // pbrt-v4's, exitInterface.PDF(-w, wi, mode): the density of the reverse move, which
     // measures wi, not the inner direction. The weights need not sum to one; for rough
-    // coats f() comes out too bright (tests/layered_reference_test.cpp). Kept so that
+    // coats f() comes out too bright (tests/bxdfs/layered_reference_test.cpp). Kept so that
     // pbrt-v4's images can be reproduced, and its bias measured.
     PbrtV4,
 };

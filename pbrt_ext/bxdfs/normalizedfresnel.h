@@ -7,7 +7,7 @@
 #pragma once
 
 #include "pbrt_ext/base/bxdf.h"
-#include "pbrt_ext/bssrdf.h"
+#include "pbrt_ext/materials/bssrdf.h"
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/util/pstd.h"
 #include "pbrt_ext/util/sampling.h"

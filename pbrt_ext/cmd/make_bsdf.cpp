@@ -1,12 +1,12 @@
 // make_bsdf: writes an RGL .bsdf file (the format of pbrt-v4's measured material) made from
 // pbrt-v4's rough conductor BRDF: Trowbridge-Reitz alpha and a metal's named eta and k spectra
-// (bxdfs/measuredwriter.h). scenes/measured.pbrt renders one beside the analytic conductor it
+// (materials/measuredwriter.h). scenes/measured.pbrt renders one beside the analytic conductor it
 // was made from; the measured material's tests make their own.
 //
 // Usage: make_bsdf [--alpha A] [--metal NAME] [--resolution N] [--thetas N] [--lambda-step NM]
 //                  out.bsdf
-#include "pbrt_ext/bxdfs/measuredwriter.h"
-#include "pbrt_ext/spectrum.h"
+#include "pbrt_ext/materials/measuredwriter.h"
+#include "pbrt_ext/spectra/spectrum.h"
 
 #include <CLI/CLI.hpp>
 

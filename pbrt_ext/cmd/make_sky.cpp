@@ -13,10 +13,10 @@
 // Fig. 3 comparison of BSDF samplers assumes (scenes/convergence/paper-fig3.toml).
 //
 // Usage: make_sky [--resolution N] [--sun-elevation deg] [--sun-azimuth deg] [--no-sun] out.exr
-#include "pbrt_ext/util/equalarea.h"
-#include "pbrt_ext/util/image.h"
-#include "pbrt_ext/util/math.h"
+#include "pbrt_ext/images/image.h"
 #include "pbrt_ext/util/color.h"
+#include "pbrt_ext/util/equalarea.h"
+#include "pbrt_ext/util/math.h"
 #include "pbrt_ext/util/vecmath.h"
 
 #include <cerrno>

@@ -1,6 +1,6 @@
 #include "pbrt_ext/cmd/merge.h"
 
-#include "pbrt_ext/filmslice.h"
+#include "pbrt_ext/film/filmslice.h"
 
 #include <CLI/CLI.hpp>
 

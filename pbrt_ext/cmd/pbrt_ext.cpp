@@ -6,12 +6,12 @@
 // render writes the image rendered so far and exits with status 130 (cmd/interrupt.h).
 #include "pbrt_ext/cmd/interrupt.h"
 #include "pbrt_ext/cmd/merge.h"
-#include "pbrt_ext/filmslice.h"
-#include "pbrt_ext/lightsamplers.h"
+#include "pbrt_ext/film/filmslice.h"
+#include "pbrt_ext/images/image.h"
+#include "pbrt_ext/lights/lightsamplers.h"
 #include "pbrt_ext/options.h"
 #include "pbrt_ext/render.h"
-#include "pbrt_ext/sceneloader.h"
-#include "pbrt_ext/util/image.h"
+#include "pbrt_ext/scene/sceneloader.h"
 #include "pbrt_ext/util/log.h"
 
 #include <CLI/CLI.hpp>

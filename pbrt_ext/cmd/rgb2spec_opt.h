@@ -31,7 +31,7 @@
 //    next layer, z = 1.7e-6: lookups below it keep their hue and stay within 2e-6 of black.
 #pragma once
 
-#include "pbrt_ext/namedspectradata.h"
+#include "pbrt_ext/spectra/namedspectradata.h"
 #include "pbrt_ext/util/ciedata.h"
 
 #include <algorithm>
@@ -81,7 +81,7 @@ inline Vec3 NodeRGB(int maxc, int zi, int yi, int xi) {
 
 // ---- The colour spaces ---------------------------------------------------------------------------
 
-// pbrt-v4's four RGB colour spaces (util/colorspace.cpp): the primaries as CIE xy chromaticities
+// pbrt-v4's four RGB colour spaces (spectra/colorspace.cpp): the primaries as CIE xy chromaticities
 // (sRGB: ITU-R BT.709; DCI-P3: SMPTE RP 431-2 primaries with a D65 white, as pbrt-v4 has it;
 // Rec. 2020: ITU-R BT.2020; ACES2065-1: SMPTE ST 2065-1's AP0, whose green and blue lie outside
 // the spectral locus) and the illuminant that fixes the white.

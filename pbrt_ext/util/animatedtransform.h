@@ -90,7 +90,7 @@ class AnimatedTransform {
 // sampled at the keyframes. Exact there, and between them wherever outer is a similarity (a
 // static instance placed by rotation, translation and uniform scale: left factors commute with
 // the interpolation) or both only translate; otherwise within the interpolation's error over a
-// step (tests/animatedtransform_test.cpp measures it).
+// step (tests/util/animatedtransform_test.cpp measures it).
 class KeyframedTransform {
   public:
     KeyframedTransform() = default;

@@ -3,7 +3,7 @@
 // (throughput, radiance, reflectance) is a SampledSpectrum holding its value at those wavelengths.
 // The operator set is pbrt-v4's, so a BxDF written against one compiles unchanged against the other.
 // The host-side spectra that are sampled into these (constant, tabulated, blackbody, RGB) are in
-// pbrt_ext/spectrum.h.
+// pbrt_ext/spectra/spectrum.h.
 #pragma once
 
 #include "pbrt_ext/pbrt.h"

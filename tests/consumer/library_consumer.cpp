@@ -5,7 +5,7 @@
 #include <pbrt_ext/options.h>
 #include <pbrt_ext/render.h>
 #include <pbrt_ext/scene.h>
-#include <pbrt_ext/sceneloader.h>
+#include <pbrt_ext/scene/sceneloader.h>
 
 #include <cmath>
 #include <cstdio>

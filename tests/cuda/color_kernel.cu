@@ -1,7 +1,7 @@
 // Compile check: color.h, rgbtospectrumtable.h (the look-up) and ciedata.h are GPU-clean.
+#include "pbrt_ext/spectra/rgbtospectrumtable.h"
 #include "pbrt_ext/util/ciedata.h"
 #include "pbrt_ext/util/color.h"
-#include "pbrt_ext/util/rgbtospectrumtable.h"
 
 using namespace pbrt;
 

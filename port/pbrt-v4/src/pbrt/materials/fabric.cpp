@@ -1,5 +1,5 @@
 // FabricMaterial creation from scene-file parameters: pbrt_ext's "fabric" material
-// (pbrt_ext/create_materials.cpp there), with the same defaults and error messages.
+// (pbrt_ext/scene/create_materials.cpp there), with the same defaults and error messages.
 #include <pbrt/materials/fabric.h>
 
 #include <pbrt/paramdict.h>

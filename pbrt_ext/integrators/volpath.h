@@ -1,0 +1,86 @@
+// The volumetric path tracer (pbrt-v4's VolPathIntegrator; the book's section 14.2).
+//
+// Media are sampled by delta tracking against each medium's majorant: at every tentative
+// collision the path absorbs, scatters or passes on (null scattering) in proportion to
+// sigma_a, sigma_s and sigma_maj - sigma_t at the hero wavelength. Shadow rays cross media and
+// interfaces by ratio tracking. Every estimate carries rescaled path probabilities r_u
+// (unidirectional) and r_l (light sampling) per wavelength, so that the final division by
+// their average is spectral MIS over the wavelengths (chromatic media stay free of colour
+// noise) and, at emitters, the balance heuristic between BSDF or phase sampling and light
+// sampling, as pbrt-v4 combines them. Under a subsurface material's boundary, light leaves
+// through the BSSRDF's exit points, as pbrt-v4's volpath (and only it) renders them.
+#pragma once
+
+#include "pbrt_ext/integrators/path.h"
+#include "pbrt_ext/interaction.h"
+#include "pbrt_ext/materials/bsdf.h"
+#include "pbrt_ext/materials/bssrdf.h"
+#include "pbrt_ext/media/media.h"
+#include "pbrt_ext/samplers/samplers.h"
+
+namespace pbrt {
+
+class Scene;
+
+class VolPathIntegrator {
+  public:
+    // options.strategy must be MIS (volpath combines its estimators only that way).
+    VolPathIntegrator(const Scene &scene, PathIntegratorOptions options)
+        : scene(scene), options(options) {}
+
+    SampledSpectrum Li(RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler,
+                       RayCounts &rays) const;
+
+  private:
+    // What a path carries from vertex to vertex.
+    struct PathState {
+        RayDifferential ray;
+        SampledSpectrum L{0.f}, beta{1.f}, r_u{1.f}, r_l{1.f};
+        int depth = 0;
+        bool specularBounce = false, anyNonSpecularBounces = false;
+        Float etaScale = 1;
+        LightSampleContext prevCtx;
+    };
+    enum class MediumOutcome { PassedThrough, Scattered, Terminated };
+
+    // Delta tracking along the ray's medium up to tMax: medium emission, absorption, real
+    // scattering (with next-event estimation and a new direction) or null scattering.
+    MediumOutcome SampleMedium(PathState &path, Float tMax, SampledWavelengths &lambda,
+                               Sampler &sampler, RayCounts &rays) const;
+    // Next-event estimation at a surface vertex with its BSDF.
+    SampledSpectrum SampleLdAtSurface(const SurfaceInteraction &si, const BSDF &bsdf,
+                                      const SampledWavelengths &lambda, Sampler &sampler,
+                                      const PathState &path, RayCounts &rays) const;
+    // Subsurface scattering after the path refracted into a subsurface material at si (pbrt-v4's
+    // volpath): a probe segment for the exit point, one of the material's surfaces along it
+    // chosen uniformly, the BSSRDF's weight over its sampling density (with spectral MIS over the
+    // wavelengths' densities), next-event estimation at the exit and a new direction from the
+    // exit's BSDF. False when the path ends there.
+    bool ScatterSubsurface(PathState &path, const SurfaceInteraction &si, const TabulatedBSSRDF &bssrdf,
+                           SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays) const;
+    // Emission Le reached by the path, from light lightIndex, weighted against light sampling.
+    void AddEmitted(PathState &path, SampledSpectrum Le, int lightIndex) const;
+    // Next-event estimation at a surface or medium vertex: one light sample, attenuated by
+    // the media and interfaces on the way (ratio tracking), weighted by MIS against
+    // scatterPDF(wi). r_p is the path's rescaled probability r_u at the vertex.
+    template <typename Scatter, typename SpawnTo>
+    SampledSpectrum SampleLd(const LightSampleContext &ctx, Scatter scatter, SpawnTo spawnTo,
+                             const SampledWavelengths &lambda, Sampler &sampler,
+                             SampledSpectrum beta, SampledSpectrum r_p, RayCounts &rays) const;
+    // Transmittance along ray to pLight through media and interfaces (0 if a surface blocks
+    // it), updating the light-path probabilities r_l and r_u by ratio tracking (by its
+    // expectation in homogeneous media).
+    SampledSpectrum Transmittance(Ray ray, Point3f pLight, const SampledWavelengths &lambda,
+                                  SampledSpectrum *r_l, SampledSpectrum *r_u,
+                                  RayCounts &rays) const;
+    // The average of the rescaled probabilities over the wavelengths (spectral MIS), or with
+    // spectral MIS off (for the test that measures its worth) the hero wavelength's alone.
+    Float MISDenominator(const SampledSpectrum &r) const {
+        return options.spectralMIS ? r.Average() : r[0];
+    }
+
+    const Scene &scene;
+    PathIntegratorOptions options;
+};
+
+}  // namespace pbrt
