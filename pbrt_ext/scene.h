@@ -7,11 +7,11 @@
 
 #include "pbrt_ext/cameras/cameras.h"
 #include "pbrt_ext/film/film.h"
-#include "pbrt_ext/integrators/path.h"
 #include "pbrt_ext/lights/lights.h"
 #include "pbrt_ext/lights/lightsamplers.h"
 #include "pbrt_ext/materials/materials.h"
 #include "pbrt_ext/media/media.h"
+#include "pbrt_ext/options.h"
 #include "pbrt_ext/samplers/samplers.h"
 #include "pbrt_ext/shapes/aggregate.h"
 #include "pbrt_ext/shapes/shapes.h"

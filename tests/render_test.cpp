@@ -3,6 +3,7 @@
 #include "tests/support/scenes.h"
 
 #include "pbrt_ext/bxdfs/fabric_albedo.h"
+#include "pbrt_ext/integrators/path.h"
 #include "pbrt_ext/render.h"
 
 #include <gtest/gtest.h>

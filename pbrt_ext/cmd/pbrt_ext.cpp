@@ -199,7 +199,8 @@ int RenderAndWriteImage(Scene &scene, const CommandLine &cmd) {
     // The scene file's text as it was loaded, before a render that may take hours.
     SliceIdentity identity;
     if (options.samples)
-        identity = MakeSliceIdentity(scene, FileContents(cmd.sceneFile), o);
+        identity = MakeSliceIdentity(FileContents(cmd.sceneFile), scene.sampler,
+                                     scene.integratorOptions, scene.film, o);
     BeginInterruptibleRender();
     if (!o.quiet) {
         Vector2i size = scene.film.PixelBounds().Diagonal();

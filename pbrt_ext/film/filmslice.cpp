@@ -1,6 +1,5 @@
 #include "pbrt_ext/film/filmslice.h"
 
-#include "pbrt_ext/scene.h"
 #include "pbrt_ext/spectra/colorspace.h"
 #include "pbrt_ext/util/error.h"
 #include "pbrt_ext/util/hash.h"
@@ -38,8 +37,7 @@ std::string FilmIdentity(const RGBFilm &film) {
                        MatrixString(film.OutputRGBFromSensorRGB()));
 }
 
-std::string IntegratorIdentity(const Scene &scene, const RenderOverrides &o) {
-    const PathIntegratorOptions &i = scene.integratorOptions;
+std::string IntegratorIdentity(const PathIntegratorOptions &i, const RenderOverrides &o) {
     return fmt::format("type {} maxdepth {} strategy {} regularize {} spectralmis {} fabric-sampler {} "
                        "light-sampler {} layered-estimator {} displacement-edge-scale {:.9g}",
                        int(i.type), i.maxDepth, ToString(i.strategy), i.regularize, i.spectralMIS,
@@ -129,14 +127,15 @@ void CheckSameRender(const FilmSlice &a, const std::string &nameA, const FilmSli
 
 }  // namespace
 
-SliceIdentity MakeSliceIdentity(const Scene &scene, const std::string &sceneText,
+SliceIdentity MakeSliceIdentity(const std::string &sceneText, const Sampler &sampler,
+                                const PathIntegratorOptions &integrator, const RGBFilm &film,
                                 const RenderOverrides &overrides) {
     uint64_t hash = MurmurHash64A(reinterpret_cast<const unsigned char *>(sceneText.data()),
                                   sceneText.size(), 0);
     return {{"scene", fmt::format("{:016x}", hash)},
-            {"sampler", scene.sampler.ToString()},
-            {"integrator", IntegratorIdentity(scene, overrides)},
-            {"film", FilmIdentity(scene.film)}};
+            {"sampler", sampler.ToString()},
+            {"integrator", IntegratorIdentity(integrator, overrides)},
+            {"film", FilmIdentity(film)}};
 }
 
 FilmSlice FilmSlice::FromFilm(const RGBFilm &film, SampleRange samples, double seconds,

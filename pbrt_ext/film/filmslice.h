@@ -18,6 +18,7 @@
 #include "pbrt_ext/images/image.h"
 #include "pbrt_ext/options.h"
 #include "pbrt_ext/render.h"
+#include "pbrt_ext/samplers/samplers.h"
 
 #include <cstdint>
 #include <optional>
@@ -27,16 +28,15 @@
 
 namespace pbrt {
 
-class Scene;
-
 // What must agree for slices to merge, as (name, value) in a fixed order: the scene file's
 // contents (a hash), the sampler (its kind, samples per pixel, randomization and seed), the
 // integrator and the overrides that change it, and the film (resolution, pixel bounds, filter,
 // clamp, sensor and colour space).
 using SliceIdentity = std::vector<std::pair<std::string, std::string>>;
 
-// sceneText: the scene file's bytes.
-SliceIdentity MakeSliceIdentity(const Scene &scene, const std::string &sceneText,
+// sceneText: the scene file's bytes; the sampler, integrator and film: the scene's.
+SliceIdentity MakeSliceIdentity(const std::string &sceneText, const Sampler &sampler,
+                                const PathIntegratorOptions &integrator, const RGBFilm &film,
                                 const RenderOverrides &overrides);
 
 struct FilmSlice {

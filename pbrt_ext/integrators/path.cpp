@@ -15,25 +15,6 @@ PathIntegrator::PathIntegrator(const Scene &scene, PathIntegratorOptions options
                                     "leaves the uniform sky to MIS's BSDF sampling");
 }
 
-std::string ToString(PathStrategy strategy) {
-    switch (strategy) {
-    case PathStrategy::MIS:
-        return "mis";
-    case PathStrategy::BSDF:
-        return "bsdf";
-    case PathStrategy::Light:
-        return "light";
-    }
-    return "?";
-}
-
-PathStrategy ParsePathStrategy(const std::string &name) {
-    for (PathStrategy s : {PathStrategy::MIS, PathStrategy::BSDF, PathStrategy::Light})
-        if (ToString(s) == name)
-            return s;
-    throw std::invalid_argument("unknown strategy \"" + name + "\": expected mis, bsdf or light");
-}
-
 Float PathIntegrator::BSDFHitWeight(bool lightSamplingApplied, BSDFDensity &pdfBSDF,
                                     Float pdfLight) const {
     if (!lightSamplingApplied)

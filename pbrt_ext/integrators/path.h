@@ -6,6 +6,7 @@
 #include "pbrt_ext/cameras/cameras.h"
 #include "pbrt_ext/interaction.h"
 #include "pbrt_ext/materials/bsdf.h"
+#include "pbrt_ext/options.h"
 #include "pbrt_ext/samplers/samplers.h"
 
 #include <cstdint>
@@ -15,46 +16,6 @@
 namespace pbrt {
 
 class Scene;
-
-enum class PathStrategy {
-    MIS,    // both estimators, weighted by the power heuristic (default)
-    BSDF,   // BSDF sampling only: emitters count when paths hit them; delta lights are invisible
-    Light,  // light sampling wherever it applies; emitters hit by BSDF sampling count only where
-            // light sampling cannot reach them (seen directly or through a specular bounce)
-};
-
-std::string ToString(PathStrategy strategy);
-// "mis", "bsdf" or "light"; throws std::invalid_argument naming the accepted values otherwise.
-PathStrategy ParsePathStrategy(const std::string &name);
-
-// The integrators of pbrt-v4 that we have, by their scene-file names.
-enum class IntegratorType {
-    Path,      // "path": media ignored, as in pbrt-v4
-    VolPath,   // "volpath" (pbrt-v4's default): media are rendered by the VolPathIntegrator. A
-               // scene without media needs none of it and is rendered by the path tracer,
-               // which estimates the same image.
-    BDPT,       // "bdpt": bidirectional path tracing (bdpt.h)
-    LightPath,  // "lightpath": paths traced from the lights only (lightpath.h)
-    SPPM        // "sppm": stochastic progressive photon mapping (sppm.h)
-};
-
-struct PathIntegratorOptions {
-    int maxDepth = 5;
-    bool regularize = false;
-    PathStrategy strategy = PathStrategy::MIS;
-    IntegratorType type = IntegratorType::Path;
-    // bdpt: also write each (s, t) strategy's image, unweighted (visualizeStrategies) or
-    // weighted by MIS (visualizeWeights), beside the film's file (pbrt-v4's bdpt_dDD_sSS_tTT).
-    bool visualizeStrategies = false, visualizeWeights = false;
-    // sppm: photons per iteration (the film's pixel count if not positive), the visible
-    // points' initial search radius, and the seed of the photons' Halton points.
-    int64_t photonsPerIteration = -1;
-    Float initialRadius = 1;
-    int photonSeed = 0;
-    // VolPathIntegrator only: weigh wavelengths by spectral MIS (pbrt-v4), or follow the hero
-    // wavelength's probabilities alone (to measure what spectral MIS gains).
-    bool spectralMIS = true;
-};
 
 // Counts of traced rays, per thread; summed for the statistics.
 struct RayCounts {

@@ -1,5 +1,6 @@
 #include "pbrt_ext/integrators/sppm.h"
 
+#include "pbrt_ext/integrators/path.h"
 #include "pbrt_ext/lights/lightsamplers.h"
 #include "pbrt_ext/scene.h"
 #include "pbrt_ext/util/hash.h"

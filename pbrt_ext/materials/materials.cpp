@@ -1,11 +1,8 @@
 #include "pbrt_ext/materials/materials.h"
 
-#include "pbrt_ext/options.h"
 #include "pbrt_ext/spectra/colorspace.h"
 #include "pbrt_ext/util/hash.h"
 #include "pbrt_ext/util/scattering.h"
-
-#include <stdexcept>
 
 namespace pbrt {
 
@@ -231,28 +228,6 @@ int MixMaterial::Choose(const SurfaceInteraction &si) const {
         return materials[1];
     Float u = Float(uint32_t(Hash(si.p, si.wo, materials[0], materials[1]))) * 0x1p-32f;
     return amt < u ? materials[0] : materials[1];
-}
-
-FabricSampling ParseFabricSampling(const std::string &name) {
-    std::string error;
-    pstd::optional<FabricSampling> sampling =
-        FabricOptionFromName<FabricSampling>("sampler", kFabricSamplingNames, name, &error);
-    if (!sampling)
-        throw std::invalid_argument(error);
-    return *sampling;
-}
-
-LayeredExitMIS ParseLayeredEstimator(const std::string &name) {
-    if (name == "unbiased")
-        return LayeredExitMIS::InnerDirection;
-    if (name == "pbrt-v4")
-        return LayeredExitMIS::PbrtV4;
-    throw std::invalid_argument("unknown layered estimator \"" + name +
-                                "\": \"unbiased\" or \"pbrt-v4\"");
-}
-
-const char *LayeredEstimatorName(LayeredExitMIS mis) {
-    return mis == LayeredExitMIS::InnerDirection ? "unbiased" : "pbrt-v4";
 }
 
 }  // namespace pbrt

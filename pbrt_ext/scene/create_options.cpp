@@ -330,19 +330,6 @@ Sampler CreateSampler(const SceneEntity &e, Point2i fullResolution,
     });
 }
 
-std::optional<std::string> SamplerNameError(const std::string &name) {
-    for (const char *known : {"zsobol", "halton", "sobol", "paddedsobol", "pmj02bn", "stratified", "independent"})
-        if (name == known) return {};
-    return "unknown Sampler \"" + name + "\": expected zsobol, halton, sobol, paddedsobol, pmj02bn, "
-           "stratified or independent";
-}
-
-std::optional<std::string> IntegratorNameError(const std::string &name) {
-    for (const char *known : {"path", "volpath", "bdpt", "lightpath", "sppm"})
-        if (name == known) return {};
-    return "unknown Integrator \"" + name + "\": expected path, volpath, bdpt, lightpath or sppm";
-}
-
 PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrides &overrides,
                                        std::string *lightSampler) {
     const ParameterDictionary &p = e.parameters;

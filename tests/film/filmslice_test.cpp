@@ -70,8 +70,10 @@ Rendered RenderSamples(const std::string &text, std::optional<SampleRange> sampl
     options.samples = samples;
     RenderStatistics stats = Render(*r.scene, options);
     SampleRange rendered = SamplesToRender(*r.scene, options);
-    r.slice = FilmSlice::FromFilm(r.scene->film, rendered, stats.seconds,
-                                  MakeSliceIdentity(*r.scene, text, overrides), file.string());
+    SliceIdentity identity = MakeSliceIdentity(text, r.scene->sampler, r.scene->integratorOptions,
+                                               r.scene->film, overrides);
+    r.slice = FilmSlice::FromFilm(r.scene->film, rendered, stats.seconds, std::move(identity),
+                                  file.string());
     return r;
 }
 
