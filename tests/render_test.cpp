@@ -2,6 +2,7 @@
 // thread-count invariance, and no NaN anywhere.
 #include "tests/support/scenes.h"
 
+#include "pbrt_ext/bxdfs/albedo.h"
 #include "pbrt_ext/bxdfs/fabric_albedo.h"
 #include "pbrt_ext/integrators/path.h"
 #include "pbrt_ext/render.h"

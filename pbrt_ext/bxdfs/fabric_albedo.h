@@ -1,6 +1,7 @@
 // Directional albedo of a FabricBxDF by deterministic quadrature (host only): furnace tables and tests.
 #pragma once
 
+#include "pbrt_ext/bxdfs/albedo.h"
 #include "pbrt_ext/bxdfs/fabric.h"
 #include "pbrt_ext/util/spherequadrature.h"
 

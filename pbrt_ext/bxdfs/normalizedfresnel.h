@@ -1,5 +1,5 @@
 // pbrt_ext: the directional part Sw of a separable BSSRDF at its exit point, pbrt-v4's
-// NormalizedFresnelBxDF (bssrdf.h): the Fresnel transmittance out of a dielectric of relative
+// NormalizedFresnelBxDF (materials/bssrdf.h): the Fresnel transmittance out of a dielectric of relative
 // index eta, normalized to reflect everything that reaches it,
 //   f(wo, wi) = (1 - Fr(cos theta_i, eta)) / (c pi),  c = 1 - 2 FresnelMoment1(1 / eta),
 // times eta^2 for radiance, as pbrt-v4 scales it (radiance leaving a medium of index eta).
@@ -7,7 +7,6 @@
 #pragma once
 
 #include "pbrt_ext/base/bxdf.h"
-#include "pbrt_ext/materials/bssrdf.h"
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/util/pstd.h"
 #include "pbrt_ext/util/sampling.h"

@@ -5,6 +5,7 @@
 // tangent thread, plus its peak over the sphere; writes the same numbers as CSV for plotting.
 //
 // Usage: fabric_furnace [out.csv]
+#include "pbrt_ext/bxdfs/albedo.h"
 #include "pbrt_ext/bxdfs/fabric_albedo.h"
 
 #include <cstdio>

@@ -25,11 +25,6 @@
 
 namespace pbrt {
 
-// The first two moments of the dielectric Fresnel reflectance over the hemisphere, the integrals
-// of Fr(cos, eta) cos^k for k = 1, 2 (d'Eon and Irving 2011's polynomial fits, as pbrt-v4 uses).
-Float FresnelMoment1(Float eta);
-Float FresnelMoment2(Float eta);
-
 // The radial profile Sr(r) of a semi-infinite slab by photon beam diffusion, its multiple- and
 // single-scattering parts (pbrt-v4's BeamDiffusionMS and BeamDiffusionSS), each a 100-point
 // quadrature along the refracted beam.

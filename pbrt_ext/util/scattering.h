@@ -323,4 +323,10 @@ PBRT_CPU_GPU inline Float InvertExponentialSample(Float x, Float a) {
     return 1 - std::exp(-a * x);
 }
 
+// The first two moments of the dielectric Fresnel reflectance over the hemisphere, the integrals
+// of Fr(cos, eta) cos^k for k = 1, 2 (d'Eon and Irving 2011's polynomial fits, as pbrt-v4 uses;
+// host only: util/scattering.cpp).
+Float FresnelMoment1(Float eta);
+Float FresnelMoment2(Float eta);
+
 }  // namespace pbrt

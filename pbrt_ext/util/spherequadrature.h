@@ -6,7 +6,6 @@
 // converge as O(1/nPhi²).
 #pragma once
 
-#include "pbrt_ext/base/bxdf.h"
 #include "pbrt_ext/util/math.h"
 #include "pbrt_ext/util/vecmath.h"
 
@@ -84,17 +83,6 @@ double IntegrateSphere(Integrand g, const Frame &frame, const std::vector<double
 template <typename Integrand>
 double IntegrateSphere(Integrand g, const Frame &frame, int nZ, int nPhi) {
     return IntegrateSphere(g, frame, {}, nZ, nPhi);
-}
-
-// Directional albedo ∫ f(wo, wi) |cos θi| dωi of one channel of a BxDF, by IntegrateSphere.
-template <typename BxDF>
-double DirectionalAlbedo(const BxDF &bxdf, Vector3f wo, const Frame &frame,
-                         const std::vector<double> &zBreaks, int nZ, int nPhi, int channel = 0) {
-    return IntegrateSphere(
-        [&](Vector3f wi) {
-            return double(bxdf.f(wo, wi, TransportMode::Radiance)[channel]) * std::abs(wi.z);
-        },
-        frame, zBreaks, nZ, nPhi);
 }
 
 }  // namespace pbrt

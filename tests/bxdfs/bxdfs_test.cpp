@@ -4,6 +4,7 @@
 #include "tests/support/bxdf_properties.h"
 #include "tests/support/chi2.h"
 
+#include "pbrt_ext/bxdfs/albedo.h"
 #include "pbrt_ext/bxdfs/conductor.h"
 #include "pbrt_ext/bxdfs/diffuse.h"
 #include "pbrt_ext/util/spherequadrature.h"

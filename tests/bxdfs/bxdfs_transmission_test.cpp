@@ -7,6 +7,7 @@
 #include "tests/support/bxdf_properties.h"
 #include "tests/support/chi2.h"
 
+#include "pbrt_ext/bxdfs/albedo.h"
 #include "pbrt_ext/bxdfs/dielectric.h"
 #include "pbrt_ext/bxdfs/diffusetransmission.h"
 #include "pbrt_ext/bxdfs/thindielectric.h"

@@ -3,6 +3,7 @@
 // unit-peak one; Regularize keeps it so; rho() estimates it.
 #include "tests/support/bxdf_properties.h"
 
+#include "pbrt_ext/bxdfs/albedo.h"
 #include "pbrt_ext/bxdfs/fabric_albedo.h"
 #include "pbrt_ext/util/rng.h"
 

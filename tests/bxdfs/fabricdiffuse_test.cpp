@@ -5,6 +5,7 @@
 #include "tests/support/bxdf_properties.h"
 #include "tests/support/chi2.h"
 
+#include "pbrt_ext/bxdfs/albedo.h"
 #include "pbrt_ext/bxdfs/diffuse.h"
 #include "pbrt_ext/bxdfs/fabric.h"
 #include "pbrt_ext/bxdfs/fabric_albedo.h"

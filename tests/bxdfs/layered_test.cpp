@@ -14,6 +14,7 @@
 #include "tests/support/bxdf_properties.h"
 #include "tests/support/chi2.h"
 
+#include "pbrt_ext/bxdfs/albedo.h"
 #include "pbrt_ext/bxdfs/layered.h"
 #include "pbrt_ext/util/hash.h"
 #include "pbrt_ext/util/spherequadrature.h"
