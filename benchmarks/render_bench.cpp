@@ -63,7 +63,7 @@ void ThreadCounts(benchmark::internal::Benchmark *b) {
 void RenderCornellBox(benchmark::State &state, Material boxes, const char *imageName,
                       IntegratorType integrator = IntegratorType::Path, int spp = 64) {
     Measure(state, [&](int) {
-        PathIntegratorOptions options;
+        IntegratorOptions options;
         options.type = integrator;
         return testscenes::CornellBox(Point2i(256, 256), spp, options, boxes);
     }, imageName);

@@ -35,7 +35,7 @@ enum class IntegratorType {
     SPPM        // "sppm": stochastic progressive photon mapping (integrators/sppm.h)
 };
 
-struct PathIntegratorOptions {
+struct IntegratorOptions {
     int maxDepth = 5;
     bool regularize = false;
     PathStrategy strategy = PathStrategy::MIS;

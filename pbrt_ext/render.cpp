@@ -112,7 +112,7 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
 using Integrator = std::variant<PathIntegrator, VolPathIntegrator, BDPTIntegrator, LightPathIntegrator>;
 
 Integrator ChooseIntegrator(Scene &scene) {
-    const PathIntegratorOptions &o = scene.integratorOptions;
+    const IntegratorOptions &o = scene.integratorOptions;
     switch (o.type) {
     case IntegratorType::BDPT:
         return BDPTIntegrator(scene, o);

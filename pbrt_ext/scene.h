@@ -135,7 +135,7 @@ class Scene {
     bool hasMotion = false;
     RGBFilm film;
     Sampler sampler;
-    PathIntegratorOptions integratorOptions;
+    IntegratorOptions integratorOptions;
     // Participating media, referred to by index from rays and surfaces; the camera's (-1:
     // vacuum) starts every camera ray.
     std::vector<Medium> media;
@@ -209,7 +209,7 @@ class SceneBuilder {
     void SetMediumInterface(MediumInterface mediumInterface);
     void SetCameraMedium(int medium);
 
-    void SetIntegrator(PathIntegratorOptions options) { integratorOptions = options; }
+    void SetIntegrator(IntegratorOptions options) { integratorOptions = options; }
     // "bvh" (default), "bvh-pbrt-v4" (InfiniteLightChoice::PbrtV4), "power" or "uniform".
     void SetLightSampler(std::string name);
 
@@ -243,7 +243,7 @@ class SceneBuilder {
     MediumInterface currentMediumInterface;
     std::map<std::string, int> objects;  // name -> the aggregate's object id
     std::string currentObject;           // empty outside ObjectBegin/End
-    PathIntegratorOptions integratorOptions;
+    IntegratorOptions integratorOptions;
     std::string lightSamplerName = "bvh";
 };
 

@@ -36,7 +36,7 @@ struct Estimate {
 // Li along one ray at one of the sample's wavelengths (drawn as the renderer draws them), averaged
 // over n independent samples, with its standard error. The analytic scenes it is used on have
 // constant spectra, so the value is the same at every wavelength.
-Estimate EstimateLi(const Scene &scene, PathIntegratorOptions options, const Ray &ray, int n,
+Estimate EstimateLi(const Scene &scene, IntegratorOptions options, const Ray &ray, int n,
                     int channel = 0) {
     PathIntegrator integrator(scene, options);
     Sampler sampler = IndependentSampler(n, 7);

@@ -37,7 +37,7 @@ std::string FilmIdentity(const RGBFilm &film) {
                        MatrixString(film.OutputRGBFromSensorRGB()));
 }
 
-std::string IntegratorIdentity(const PathIntegratorOptions &i, const RenderOverrides &o) {
+std::string IntegratorIdentity(const IntegratorOptions &i, const RenderOverrides &o) {
     return fmt::format("type {} maxdepth {} strategy {} regularize {} spectralmis {} fabric-sampler {} "
                        "light-sampler {} layered-estimator {} displacement-edge-scale {:.9g}",
                        int(i.type), i.maxDepth, ToString(i.strategy), i.regularize, i.spectralMIS,
@@ -128,7 +128,7 @@ void CheckSameRender(const FilmSlice &a, const std::string &nameA, const FilmSli
 }  // namespace
 
 SliceIdentity MakeSliceIdentity(const std::string &sceneText, const Sampler &sampler,
-                                const PathIntegratorOptions &integrator, const RGBFilm &film,
+                                const IntegratorOptions &integrator, const RGBFilm &film,
                                 const RenderOverrides &overrides) {
     uint64_t hash = MurmurHash64A(reinterpret_cast<const unsigned char *>(sceneText.data()),
                                   sceneText.size(), 0);

@@ -36,7 +36,7 @@ using SliceIdentity = std::vector<std::pair<std::string, std::string>>;
 
 // sceneText: the scene file's bytes; the sampler, integrator and film: the scene's.
 SliceIdentity MakeSliceIdentity(const std::string &sceneText, const Sampler &sampler,
-                                const PathIntegratorOptions &integrator, const RGBFilm &film,
+                                const IntegratorOptions &integrator, const RGBFilm &film,
                                 const RenderOverrides &overrides);
 
 struct FilmSlice {

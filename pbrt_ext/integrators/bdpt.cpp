@@ -149,7 +149,7 @@ SampledSpectrum BDPTVertex::Le(const Scene &scene, const BDPTVertex &v,
     return SampledSpectrum(0.f);
 }
 
-BDPTIntegrator::BDPTIntegrator(Scene &scene, PathIntegratorOptions options)
+BDPTIntegrator::BDPTIntegrator(Scene &scene, IntegratorOptions options)
     : scene(scene), film(scene.film), options(options), camera(scene.camera, scene.film),
       lightSampler(scene.lights) {
     Point3f center;

@@ -29,7 +29,7 @@ struct BDPTVertex;  // bdpt.cpp
 class BDPTIntegrator {
   public:
     // Throws std::invalid_argument for a camera without importance (not perspective).
-    BDPTIntegrator(Scene &scene, PathIntegratorOptions options);
+    BDPTIntegrator(Scene &scene, IntegratorOptions options);
 
     // The camera subpath starts with ray from the film position pFilm; t = 1 strategies go to
     // the film as splats, the rest is returned.
@@ -85,7 +85,7 @@ class BDPTIntegrator {
 
     const Scene &scene;
     RGBFilm &film;
-    PathIntegratorOptions options;
+    IntegratorOptions options;
     CameraImportance camera;
     PowerLightSampler lightSampler;
     Float sceneRadius;

@@ -4,7 +4,7 @@
 
 namespace pbrt {
 
-LightPathIntegrator::LightPathIntegrator(Scene &scene, PathIntegratorOptions options)
+LightPathIntegrator::LightPathIntegrator(Scene &scene, IntegratorOptions options)
     : scene(scene), film(scene.film), options(options), camera(scene.camera, scene.film),
       lightSampler(scene.lights) {
     Point2i res = film.FullResolution();

@@ -17,7 +17,7 @@ class Scene;
 class LightPathIntegrator {
   public:
     // Throws std::invalid_argument for a camera without importance (not perspective).
-    LightPathIntegrator(Scene &scene, PathIntegratorOptions options);
+    LightPathIntegrator(Scene &scene, IntegratorOptions options);
 
     // Traces one light path at the wavelengths lambda and splats what it sends to the camera;
     // returns nothing for the camera sample itself (ray and pFilm are unused).
@@ -34,7 +34,7 @@ class LightPathIntegrator {
 
     const Scene &scene;
     RGBFilm &film;
-    PathIntegratorOptions options;
+    IntegratorOptions options;
     CameraImportance camera;
     PowerLightSampler lightSampler;
     Float cropScale;  // the full film's area over the crop window's, as in bdpt.h

@@ -7,7 +7,7 @@
 
 namespace pbrt {
 
-PathIntegrator::PathIntegrator(const Scene &scene, PathIntegratorOptions options)
+PathIntegrator::PathIntegrator(const Scene &scene, IntegratorOptions options)
     : scene(scene), options(options) {
     if (options.strategy != PathStrategy::MIS && scene.lightSampler.NeedsIncompletePDFs())
         throw std::invalid_argument("the " + ToString(options.strategy) +

@@ -26,7 +26,7 @@ class PathIntegrator {
   public:
     // Throws std::invalid_argument for a strategy without MIS on a scene whose light sampler
     // was built for MIS and leaves lights to BSDF sampling (LightSampler::NeedsIncompletePDFs).
-    PathIntegrator(const Scene &scene, PathIntegratorOptions options);
+    PathIntegrator(const Scene &scene, IntegratorOptions options);
 
     // Radiance arriving along ray (from its origin's point of view) at the wavelengths lambda,
     // whose secondary wavelengths a dispersive surface may terminate.
@@ -77,7 +77,7 @@ class PathIntegrator {
     bool AllowIncompletePDF() const { return options.strategy == PathStrategy::MIS; }
 
     const Scene &scene;
-    PathIntegratorOptions options;
+    IntegratorOptions options;
 };
 
 }  // namespace pbrt

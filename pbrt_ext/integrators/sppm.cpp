@@ -159,7 +159,7 @@ class SPPM {
   public:
     SPPM(Scene &scene, const RenderOptions &renderOptions)
         : scene(scene), options(scene.integratorOptions), renderOptions(renderOptions),
-          directLight(scene, PathIntegratorOptions{}),
+          directLight(scene, IntegratorOptions{}),
           pixelBounds(scene.film.PixelBounds()), pixels(size_t(pixelBounds.Area())),
           shootLightSampler(scene.lights), permutations(uint32_t(options.photonSeed)) {
         photonsPerIteration = options.photonsPerIteration > 0 ? options.photonsPerIteration
@@ -191,7 +191,7 @@ class SPPM {
     }
 
     Scene &scene;
-    const PathIntegratorOptions &options;
+    const IntegratorOptions &options;
     const RenderOptions &renderOptions;
     // Direct light at the camera paths' vertices: the path tracer's, by MIS (pbrt-v4's
     // SPPMIntegrator::SampleLd is the same estimator).

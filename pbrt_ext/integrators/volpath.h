@@ -25,7 +25,7 @@ class Scene;
 class VolPathIntegrator {
   public:
     // options.strategy must be MIS (volpath combines its estimators only that way).
-    VolPathIntegrator(const Scene &scene, PathIntegratorOptions options)
+    VolPathIntegrator(const Scene &scene, IntegratorOptions options)
         : scene(scene), options(options) {}
 
     SampledSpectrum Li(RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler,
@@ -80,7 +80,7 @@ class VolPathIntegrator {
     }
 
     const Scene &scene;
-    PathIntegratorOptions options;
+    IntegratorOptions options;
 };
 
 }  // namespace pbrt

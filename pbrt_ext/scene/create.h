@@ -41,7 +41,7 @@ Float ExposureTime(const CameraSceneEntity &camera);
 Sampler CreateSampler(const SceneEntity &sampler, Point2i fullResolution,
                       const RenderOverrides &overrides);
 // The integrator's options, and the light sampler's name ("power" or "uniform").
-PathIntegratorOptions CreateIntegrator(const SceneEntity &integrator,
+IntegratorOptions CreateIntegrator(const SceneEntity &integrator,
                                        const RenderOverrides &overrides,
                                        std::string *lightSampler);
 

@@ -330,7 +330,7 @@ Sampler CreateSampler(const SceneEntity &e, Point2i fullResolution,
     });
 }
 
-PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrides &overrides,
+IntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrides &overrides,
                                        std::string *lightSampler) {
     const ParameterDictionary &p = e.parameters;
     // The command line's choice keeps only the scene's maxdepth: the other parameters are
@@ -341,7 +341,7 @@ PathIntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrid
     // The others (mlt, ambientocclusion, ...): volpath comes closest.
     if (!supported)
         Substitute(e, "Integrator", "\"volpath\"");
-    PathIntegratorOptions options;
+    IntegratorOptions options;
     options.type = name == "path"        ? IntegratorType::Path
                    : name == "bdpt"      ? IntegratorType::BDPT
                    : name == "lightpath" ? IntegratorType::LightPath

@@ -230,7 +230,7 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
     Camera camera = CreateCamera(scene.camera, film, folder);
     Sampler sampler = CreateSampler(scene.sampler, film.FullResolution(), overrides);
     std::string lightSampler;
-    PathIntegratorOptions integrator = CreateIntegrator(scene.integrator, overrides, &lightSampler);
+    IntegratorOptions integrator = CreateIntegrator(scene.integrator, overrides, &lightSampler);
     // Paths traced from the lights need the camera's importance, which pbrt-v4 gives the
     // perspective camera only.
     bool fromLights = integrator.type == IntegratorType::BDPT || integrator.type == IntegratorType::LightPath;

@@ -23,8 +23,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-PathIntegratorOptions Options(IntegratorType type, int maxDepth = 5) {
-    PathIntegratorOptions o;
+IntegratorOptions Options(IntegratorType type, int maxDepth = 5) {
+    IntegratorOptions o;
     o.type = type;
     o.maxDepth = maxDepth;
     return o;
@@ -157,7 +157,7 @@ class BDPTStrategies : public ::testing::Test {
     }
     void TearDown() override { fs::remove_all(dir); }
 
-    std::unique_ptr<Scene> Render1(PathIntegratorOptions options, int spp,
+    std::unique_ptr<Scene> Render1(IntegratorOptions options, int spp,
                                    Bounds2i pixels = Bounds2i(Point2i(0, 0), Point2i(24, 24))) {
         Point2i res(24, 24);
         SceneBuilder builder(LookingAt(Point3f(0, 2, -6), Point3f(0, 0.5f, 0), 40, res),
@@ -202,7 +202,7 @@ TEST_F(BDPTStrategies, EachStrategyAloneGivesThePathTracersLightOfItsDepth) {
     double byDepth[3];
     for (int maxDepth = 0; maxDepth <= 2; ++maxDepth)
         byDepth[maxDepth] = FilmMean(Render1(Options(IntegratorType::Path, maxDepth), spp)->film);
-    PathIntegratorOptions o = Options(IntegratorType::BDPT, 2);
+    IntegratorOptions o = Options(IntegratorType::BDPT, 2);
     o.visualizeStrategies = true;
     Render1(o, spp);
     for (int depth = 1; depth <= 2; ++depth) {
@@ -244,7 +244,7 @@ TEST_F(BDPTStrategies, MISWeightsShareOutEachDepthsLight) {
                 st.push_back({s, t});
         return st;
     };
-    PathIntegratorOptions o = Options(IntegratorType::BDPT, maxDepth);
+    IntegratorOptions o = Options(IntegratorType::BDPT, maxDepth);
     o.visualizeStrategies = true;
     Render1(o, 2048);
     double unweighted[maxDepth + 1] = {};

@@ -16,8 +16,8 @@ using namespace pbrt::testscenes;
 
 namespace {
 
-PathIntegratorOptions Options(IntegratorType type, Float radius = 0.25f) {
-    PathIntegratorOptions o;
+IntegratorOptions Options(IntegratorType type, Float radius = 0.25f) {
+    IntegratorOptions o;
     o.type = type;
     o.initialRadius = radius;
     o.photonsPerIteration = 4096;
@@ -63,7 +63,7 @@ TEST(SPPM, ConvergesToThePathTracersImageAsIterationsGrow) {
 // A glass sphere over a diffuse floor under a point light, seen from above: the floor's
 // caustic is light that only paths from the light find (a camera path cannot hit a point
 // light). bdpt and sppm agree on it; the path tracer sees a darker floor.
-std::unique_ptr<Scene> Caustic(PathIntegratorOptions options, int spp) {
+std::unique_ptr<Scene> Caustic(IntegratorOptions options, int spp) {
     Point2i res(32, 32);
     SceneBuilder builder(LookingAt(Point3f(0, 4, -3), Point3f(0, 0, 0), 40, res),
                          RGBFilm(res, Bounds2i(Point2i(0, 0), res), BoxFilter(), "caustic.exr"),
@@ -80,10 +80,10 @@ std::unique_ptr<Scene> Caustic(PathIntegratorOptions options, int spp) {
 
 TEST(SPPM, FindsTheCausticThatBDPTFinds) {
     auto sppm = Caustic(Options(IntegratorType::SPPM, 0.05f), 256);
-    PathIntegratorOptions bdptOptions;
+    IntegratorOptions bdptOptions;
     bdptOptions.type = IntegratorType::BDPT;
     auto bdpt = Caustic(bdptOptions, 256);
-    auto path = Caustic(PathIntegratorOptions{}, 256);
+    auto path = Caustic(IntegratorOptions{}, 256);
     EXPECT_NEAR(Mean(sppm->film), Mean(bdpt->film), 0.02 * Mean(bdpt->film));
     EXPECT_LT(Mean(path->film), 0.95 * Mean(bdpt->film));
 }
@@ -93,7 +93,7 @@ TEST(SPPM, CountsTheSkyThatLightSamplingLeavesToBSDFSampling) {
     // the uniform sky to BSDF sampling (pbrt-v4's allowIncompletePDF), so the camera path must
     // go one bounce past its visible point to find it, as in pbrt-v4; photons never count
     // direct light.
-    auto render = [](PathIntegratorOptions options, int spp) {
+    auto render = [](IntegratorOptions options, int spp) {
         Point2i res(24, 24);
         SceneBuilder builder(LookingAt(Point3f(0, 2, -4), Point3f(0, 0.5f, 0), 50, res),
                              RGBFilm(res, Bounds2i(Point2i(0, 0), res), BoxFilter(), "sky.exr"),
@@ -108,7 +108,7 @@ TEST(SPPM, CountsTheSkyThatLightSamplingLeavesToBSDFSampling) {
         return scene;
     };
     auto sppm = render(Options(IntegratorType::SPPM, 0.1f), 64);
-    auto path = render(PathIntegratorOptions{}, 256);
+    auto path = render(IntegratorOptions{}, 256);
     EXPECT_NEAR(Mean(sppm->film), Mean(path->film), 0.02 * Mean(path->film));
 }
 

@@ -85,8 +85,8 @@ Estimate EstimateLi(const Integrator &integrator, const Ray &ray, int n, int see
     return e;
 }
 
-PathIntegratorOptions VolPath(int maxDepth) {
-    PathIntegratorOptions options;
+IntegratorOptions VolPath(int maxDepth) {
+    IntegratorOptions options;
     options.maxDepth = maxDepth;
     options.type = IntegratorType::VolPath;
     return options;
@@ -99,7 +99,7 @@ struct Slab {
     Ray cameraRay = Ray(Point3f(0.1f, -0.2f, 3), Vector3f(0, 0, -1));
 };
 Slab MakeSlab(Medium medium, Float d, std::function<void(SceneBuilder &)> addLights,
-              PathIntegratorOptions options) {
+              IntegratorOptions options) {
     SceneBuilder builder = MakeBuilder();
     int m = builder.AddMedium(std::move(medium));
     builder.SetMediumInterface(MediumInterface(m, -1));
@@ -187,7 +187,7 @@ Estimate EstimateChromaticSphere(bool asGrid, bool spectralMIS, int seed) {
     builder.AddSphere(UnitSphereAt(Point3f(0, 0, 0)), -1);
     builder.AddLight(DistantLight(RotateY(30), Spectrum(1.f), 1));
     builder.AddLight(UniformInfiniteLight(Spectrum(0.3f), 1));
-    PathIntegratorOptions options = VolPath(20);
+    IntegratorOptions options = VolPath(20);
     options.spectralMIS = spectralMIS;
     builder.SetIntegrator(options);
     std::unique_ptr<Scene> scene = builder.Build();
@@ -280,7 +280,7 @@ TEST(PathIntegrator, AnEmitterBehindAnInterfaceCountsInFull) {
         builder.AddSphere(UnitSphereAt(Point3f(0, 0, 2), 0.3f), white, light);
         if (enclosed)
             builder.AddSphere(UnitSphereAt(Point3f(0, 0, 2), 0.6f), -1);
-        PathIntegratorOptions options;
+        IntegratorOptions options;
         options.maxDepth = 1;
         builder.SetIntegrator(options);
         std::unique_ptr<Scene> scene = builder.Build();

@@ -81,7 +81,7 @@ inline std::shared_ptr<TriangleMesh> Quad(Point3f a, Point3f b, Point3f c, Point
 
 // The Cornell box of the issue: 5 diffuse walls, 2 boxes, 1 area light below the ceiling, the camera
 // outside the open side (the classic dimensions, in units of 100 mm).
-inline std::unique_ptr<Scene> CornellBox(Point2i resolution, int spp, PathIntegratorOptions options,
+inline std::unique_ptr<Scene> CornellBox(Point2i resolution, int spp, IntegratorOptions options,
                                          Material boxMaterial = DiffuseMaterial{
                                              Spectrum(0.73f)}) {
     SceneBuilder builder(LookingAt(Point3f(2.78f, 2.73f, -8.0f), Point3f(2.78f, 2.73f, 0), 39.3f,
