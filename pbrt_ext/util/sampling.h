@@ -119,6 +119,18 @@ PBRT_CPU_GPU inline Float InvertLinearSample(Float x, Float a, Float b) {
     return x * (a * (2 - x) + b * x) / (a + b);
 }
 
+// The normal distribution of mean mu and deviation sigma, by inverting its CDF
+// (mu + sigma sqrt(2) erf^-1(2u - 1)); u in (0, 1).
+PBRT_CPU_GPU inline Float SampleNormal(Float u, Float mu = 0, Float sigma = 1) {
+    return mu + Sqrt2 * sigma * ErfInv(2 * u - 1);
+}
+PBRT_CPU_GPU inline Float NormalPDF(Float x, Float mu = 0, Float sigma = 1) {
+    return std::exp(-Sqr(x - mu) / (2 * Sqr(sigma))) / (sigma * std::sqrt(2 * Pi));
+}
+PBRT_CPU_GPU inline Float InvertNormalSample(Float x, Float mu = 0, Float sigma = 1) {
+    return 0.5f * (1 + std::erf((x - mu) / (sigma * Sqrt2)));
+}
+
 // Multiple importance sampling weights for strategy f (nf samples) against g (ng samples).
 // Where both densities vanish the sample cannot occur; weight 0 keeps the estimate finite.
 PBRT_CPU_GPU inline Float BalanceHeuristic(int nf, Float fPdf, int ng, Float gPdf) {

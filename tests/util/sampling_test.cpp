@@ -114,6 +114,41 @@ TEST(Warps, LinearRoundTrip) {
         }
 }
 
+// The normal warp inverts, its values are finite at u = 0 (where erf^-1 has its pole: the
+// MLT sampler draws u = 0 once in 2^24 steps), and erf^-1 inverts std::erf to 2e-6.
+TEST(Warps, NormalRoundTrip) {
+    for (int i = 1; i < 1000; ++i) {
+        Float u = i / 1000.f;
+        Float x = SampleNormal(u, 0.5f, 0.25f);
+        EXPECT_NEAR(InvertNormalSample(x, 0.5f, 0.25f), u, 2e-6f) << "u = " << u;
+    }
+    EXPECT_TRUE(std::isfinite(SampleNormal(0)));
+    EXPECT_LT(SampleNormal(0), -5);
+    for (int i = -9999; i <= 9999; i += 7) {
+        Float x = i / 10000.f;
+        EXPECT_NEAR(std::erf(ErfInv(x)), x, 2e-6f) << "x = " << x;
+    }
+}
+
+// The density integrates to one, and 100000 samples match its mean and deviation (within 4
+// standard errors: 0.0013 and 0.0009 for sigma 0.1).
+TEST(Warps, NormalSamplesFollowTheDensity) {
+    double integral = 0;
+    for (int i = -6000; i < 6000; ++i) integral += 1e-3 * NormalPDF((i + 0.5f) * 1e-3f, 0, 1);
+    EXPECT_NEAR(integral, 1, 1e-6);
+    RNG rng;
+    double sum = 0, sum2 = 0;
+    const int n = 100000;
+    for (int i = 0; i < n; ++i) {
+        double x = SampleNormal(rng.Uniform<Float>(), 1, 0.1f);
+        sum += x;
+        sum2 += x * x;
+    }
+    double mean = sum / n;
+    EXPECT_NEAR(mean, 1, 4 * 0.1 / std::sqrt(n));
+    EXPECT_NEAR(std::sqrt(sum2 / n - mean * mean), 0.1, 4 * 0.1 / std::sqrt(2.0 * n));
+}
+
 TEST(Warps, DiskWarpsStayInTheDisk) {
     for (Point2f u : InteriorGrid(32))
         for (Point2f p : {SampleUniformDiskConcentric(u), SampleUniformDiskPolar(u)})
