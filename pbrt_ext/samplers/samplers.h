@@ -8,6 +8,7 @@
 #pragma once
 
 #include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/samplers/mltsampler.h"
 #include "pbrt_ext/util/bluenoise.h"
 #include "pbrt_ext/util/hash.h"
 #include "pbrt_ext/util/lowdiscrepancy.h"
@@ -275,6 +276,7 @@ class HaltonSampler {
         int dim = NextDimensions(dimension, 2, kPrimeTableSize);
         return {SampleDimension(dim), SampleDimension(dim + 1)};
     }
+    RandomizeStrategy GetRandomizeStrategy() const { return randomize; }
     // The digits below the pixel's: the sample's position inside its pixel.
     Point2f GetPixel2D() const {
         return {RadicalInverse(0, uint64_t(haltonIndex) >> baseExponents[0]),
@@ -472,7 +474,7 @@ class PMJ02BNSampler {
 // The closed set of samplers.
 class Sampler {
     using Variant = std::variant<IndependentSampler, StratifiedSampler, HaltonSampler, SobolSampler,
-                                 PaddedSobolSampler, ZSobolSampler, PMJ02BNSampler>;
+                                 PaddedSobolSampler, ZSobolSampler, PMJ02BNSampler, MLTSampler>;
 
   public:
     template <typename S>
@@ -500,6 +502,11 @@ class Sampler {
     std::string ToString() const {
         return std::visit([](const auto &s) { return s.ToString(); }, sampler);
     }
+    // The sampler as a T, or nullptr if it is another kind.
+    template <typename T>
+    const T *Get() const { return std::get_if<T>(&sampler); }
+    template <typename T>
+    T *Get() { return std::get_if<T>(&sampler); }
 
   private:
     Variant sampler;
