@@ -1,6 +1,7 @@
 #include "pbrt_ext/options.h"
 
 #include <stdexcept>
+#include <utility>
 
 namespace pbrt {
 
@@ -52,10 +53,59 @@ std::optional<std::string> SamplerNameError(const std::string &name) {
            "stratified or independent";
 }
 
+namespace {
+
+constexpr std::pair<const char *, IntegratorType> kIntegrators[] = {
+    {"path", IntegratorType::Path},
+    {"volpath", IntegratorType::VolPath},
+    {"bdpt", IntegratorType::BDPT},
+    {"lightpath", IntegratorType::LightPath},
+    {"sppm", IntegratorType::SPPM},
+    {"mlt", IntegratorType::MLT},
+    {"simplepath", IntegratorType::SimplePath},
+    {"simplevolpath", IntegratorType::SimpleVolPath},
+    {"randomwalk", IntegratorType::RandomWalk},
+    {"ambientocclusion", IntegratorType::AmbientOcclusion},
+    {"function", IntegratorType::Function}};
+
+constexpr std::pair<const char *, TestFunction> kTestFunctions[] = {
+    {"step", TestFunction::Step},
+    {"diagonal", TestFunction::Diagonal},
+    {"disk", TestFunction::Disk},
+    {"checkerboard", TestFunction::Checkerboard},
+    {"rotatedcheckerboard", TestFunction::RotatedCheckerboard},
+    {"gaussian", TestFunction::Gaussian}};
+
+template <typename T, size_t N>
+std::optional<T> FromName(const std::pair<const char *, T> (&names)[N], const std::string &name) {
+    for (const auto &[known, value] : names)
+        if (name == known)
+            return value;
+    return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<IntegratorType> IntegratorTypeFromName(const std::string &name) {
+    return FromName(kIntegrators, name);
+}
+
+const char *IntegratorName(IntegratorType type) {
+    for (const auto &[name, known] : kIntegrators)
+        if (type == known)
+            return name;
+    return "?";
+}
+
+std::optional<TestFunction> TestFunctionFromName(const std::string &name) {
+    return FromName(kTestFunctions, name);
+}
+
 std::optional<std::string> IntegratorNameError(const std::string &name) {
-    for (const char *known : {"path", "volpath", "bdpt", "lightpath", "sppm"})
-        if (name == known) return {};
-    return "unknown Integrator \"" + name + "\": expected path, volpath, bdpt, lightpath or sppm";
+    if (IntegratorTypeFromName(name))
+        return {};
+    return "unknown Integrator \"" + name + "\": expected path, volpath, bdpt, lightpath, sppm, mlt, "
+           "simplepath, simplevolpath, randomwalk, ambientocclusion or function";
 }
 
 }  // namespace pbrt

@@ -24,17 +24,66 @@ std::string ToString(PathStrategy strategy);
 // "mis", "bsdf" or "light"; throws std::invalid_argument naming the accepted values otherwise.
 PathStrategy ParsePathStrategy(const std::string &name);
 
-// The integrators of pbrt-v4 that we have, by their scene-file names.
+// pbrt-v4's integrators, by their scene-file names.
 enum class IntegratorType {
     Path,      // "path": media ignored, as in pbrt-v4
     VolPath,   // "volpath" (pbrt-v4's default): media are rendered by the VolPathIntegrator. A
                // scene without media needs none of it and is rendered by the path tracer,
                // which estimates the same image.
-    BDPT,       // "bdpt": bidirectional path tracing (integrators/bdpt.h)
-    LightPath,  // "lightpath": paths traced from the lights only (integrators/lightpath.h)
-    SPPM        // "sppm": stochastic progressive photon mapping (integrators/sppm.h)
+    BDPT,           // "bdpt": bidirectional path tracing (integrators/bdpt.h)
+    LightPath,      // "lightpath": paths traced from the lights only (integrators/lightpath.h)
+    SPPM,           // "sppm": stochastic progressive photon mapping (integrators/sppm.h)
+    MLT,            // "mlt": Metropolis light transport over bdpt's strategies (integrators/mlt.h)
+    SimplePath,     // "simplepath": path tracing without MIS (integrators/simplepath.h)
+    SimpleVolPath,  // "simplevolpath": media alone, without MIS (integrators/simplevolpath.h)
+    RandomWalk,     // "randomwalk": uniform directions, no light sampling (integrators/randomwalk.h)
+    AmbientOcclusion,  // "ambientocclusion" (integrators/ambientocclusion.h)
+    Function,       // "function": sample generators on test functions (integrators/function.h)
 };
 
+// "path", "volpath", ...; none for a name pbrt-v4 does not have.
+std::optional<IntegratorType> IntegratorTypeFromName(const std::string &name);
+const char *IntegratorName(IntegratorType type);
+
+// The 2D test functions of the function integrator, each with integral 1 over [0, 1)^2.
+enum class TestFunction { Step, Diagonal, Disk, Checkerboard, RotatedCheckerboard, Gaussian };
+
+// "step", "diagonal", "disk", "checkerboard", "rotatedcheckerboard" or "gaussian"; none otherwise.
+std::optional<TestFunction> TestFunctionFromName(const std::string &name);
+
+// simplepath: next-event estimation with a uniformly chosen light, and BSDF sampling (else
+// uniform directions).
+struct SimplePathOptions {
+    bool sampleLights = true, sampleBSDF = true;
+};
+
+// ambientocclusion: cosine-weighted directions (else uniform), and how far an occluder counts.
+struct AmbientOcclusionOptions {
+    bool cosSample = true;
+    Float maxDistance = Infinity;
+};
+
+// mlt, with pbrt-v4's defaults; mutationsPerPixel is --spp when given.
+struct MLTOptions {
+    int64_t bootstrapSamples = 100000;
+    int64_t chains = 1000;
+    int mutationsPerPixel = 100;
+    Float largeStepProbability = 0.3f, sigma = 0.01f;
+    int seed = 0;  // of the bootstrap paths and the chains (--seed)
+};
+
+// function: the test function, the error table's file, whether rows are written only where the
+// sampler's points are well distributed, the function's image (none if empty), and the seed of
+// the per-pixel randomizations it makes itself.
+struct FunctionOptions {
+    TestFunction function = TestFunction::Step;
+    std::string outputFile;
+    bool skipBad = true;
+    std::string imageFile;
+    int seed = 0;
+};
+
+// The integrator a scene asks for and its parameters (pbrt-v4's Integrator directive).
 struct IntegratorOptions {
     int maxDepth = 5;
     bool regularize = false;
@@ -51,6 +100,10 @@ struct IntegratorOptions {
     // VolPathIntegrator only: weigh wavelengths by spectral MIS (pbrt-v4), or follow the hero
     // wavelength's probabilities alone (to measure what spectral MIS gains).
     bool spectralMIS = true;
+    SimplePathOptions simplePath = {};
+    AmbientOcclusionOptions ambientOcclusion = {};
+    MLTOptions mlt = {};
+    FunctionOptions function = {};
 };
 
 struct RenderOverrides {
@@ -88,7 +141,7 @@ const char *LayeredEstimatorName(LayeredExitMIS mis);
 
 // Empty for a Sampler name pbrt_ext knows; otherwise the message naming the ones it does.
 std::optional<std::string> SamplerNameError(const std::string &name);
-// The same for an Integrator name pbrt_ext renders (path, volpath, bdpt, lightpath, sppm).
+// The same for an Integrator name (pbrt-v4's eleven).
 std::optional<std::string> IntegratorNameError(const std::string &name);
 
 }  // namespace pbrt

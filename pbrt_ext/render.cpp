@@ -1,8 +1,14 @@
 #include "pbrt_ext/render.h"
 
+#include "pbrt_ext/integrators/ambientocclusion.h"
 #include "pbrt_ext/integrators/bdpt.h"
+#include "pbrt_ext/integrators/function.h"
 #include "pbrt_ext/integrators/lightpath.h"
+#include "pbrt_ext/integrators/mlt.h"
 #include "pbrt_ext/integrators/path.h"
+#include "pbrt_ext/integrators/randomwalk.h"
+#include "pbrt_ext/integrators/simplepath.h"
+#include "pbrt_ext/integrators/simplevolpath.h"
 #include "pbrt_ext/integrators/sppm.h"
 #include "pbrt_ext/integrators/volpath.h"
 #include "pbrt_ext/scene.h"
@@ -109,7 +115,11 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
         }
 }
 
-using Integrator = std::variant<PathIntegrator, VolPathIntegrator, BDPTIntegrator, LightPathIntegrator>;
+// The integrators that estimate each camera sample by itself; sppm, mlt and function render
+// in their own way (RenderSPPM, RenderMLT, RenderFunction).
+using Integrator = std::variant<PathIntegrator, VolPathIntegrator, BDPTIntegrator, LightPathIntegrator,
+                                SimplePathIntegrator, SimpleVolPathIntegrator, RandomWalkIntegrator,
+                                AOIntegrator>;
 
 Integrator ChooseIntegrator(Scene &scene) {
     const IntegratorOptions &o = scene.integratorOptions;
@@ -118,7 +128,14 @@ Integrator ChooseIntegrator(Scene &scene) {
         return BDPTIntegrator(scene, o);
     case IntegratorType::LightPath:
         return LightPathIntegrator(scene, o);
-    case IntegratorType::SPPM:  // rendered by RenderSPPM
+    case IntegratorType::SimplePath:
+        return SimplePathIntegrator(scene, o);
+    case IntegratorType::SimpleVolPath:
+        return SimpleVolPathIntegrator(scene, o);
+    case IntegratorType::RandomWalk:
+        return RandomWalkIntegrator(scene, o);
+    case IntegratorType::AmbientOcclusion:
+        return AOIntegrator(scene, o);
     case IntegratorType::VolPath:
         // The volumetric path tracer only where there are media or subsurface materials to
         // render.
@@ -126,6 +143,9 @@ Integrator ChooseIntegrator(Scene &scene) {
             return VolPathIntegrator(scene, o);
         [[fallthrough]];
     case IntegratorType::Path:
+    case IntegratorType::SPPM:
+    case IntegratorType::MLT:
+    case IntegratorType::Function:
         break;
     }
     return PathIntegrator(scene, o);
@@ -145,7 +165,9 @@ Integrator MakeIntegrator(Scene &scene, const RenderOptions &options) {
 }  // namespace
 
 SampleRange SamplesToRender(const Scene &scene, const RenderOptions &options) {
-    const int spp = scene.sampler.SamplesPerPixel();
+    const int spp = scene.integratorOptions.type == IntegratorType::MLT
+                        ? scene.integratorOptions.mlt.mutationsPerPixel
+                        : scene.sampler.SamplesPerPixel();
     if (!options.samples)
         return {0, spp};
     const SampleRange r = *options.samples;
@@ -153,9 +175,19 @@ SampleRange SamplesToRender(const Scene &scene, const RenderOptions &options) {
         throw std::invalid_argument("the sample range " + std::to_string(r.first) + ":" +
                                     std::to_string(r.last) + " is empty or outside the sampler's 0:" +
                                     std::to_string(spp));
-    if (scene.integratorOptions.type == IntegratorType::SPPM)
+    switch (scene.integratorOptions.type) {
+    case IntegratorType::SPPM:
         throw std::invalid_argument("sppm renders no sample range: each iteration narrows the "
                                     "radius the next one gathers photons in");
+    case IntegratorType::MLT:
+        throw std::invalid_argument("mlt renders no sample range: its Markov chains' splats are "
+                                    "normalized by the bootstrap of the whole render");
+    case IntegratorType::Function:
+        throw std::invalid_argument("function renders no sample range: it writes an error table, "
+                                    "not an image");
+    default:
+        break;
+    }
     if (scene.film.Buckets() || scene.film.GBuffer())
         throw std::invalid_argument("the spectral and g-buffer films render no sample range: a "
                                     "slice keeps the RGB film's sums only");
@@ -179,8 +211,16 @@ RenderStatistics Render(Scene &scene, const RenderOptions &options) {
     if (options.nThreads > 0)
         threads = std::make_unique<tbb::global_control>(
             tbb::global_control::max_allowed_parallelism, options.nThreads);
-    if (scene.integratorOptions.type == IntegratorType::SPPM)
+    switch (scene.integratorOptions.type) {
+    case IntegratorType::SPPM:
         return RenderSPPM(scene, options);  // iterations of camera paths and photons
+    case IntegratorType::MLT:
+        return RenderMLT(scene, options);  // Markov chains
+    case IntegratorType::Function:
+        return RenderFunction(scene, options);  // an error table per sample count
+    default:
+        break;
+    }
     const Integrator integrator = MakeIntegrator(scene, options);
     const Bounds2i pixels = scene.film.PixelBounds();
     const std::vector<Bounds2i> tiles = Tiles(pixels);

@@ -110,7 +110,7 @@ TEST(RenderFurnace, DiffuseSphereReflectsAlbedoTimesEnvironment) {
     auto scene = SphereInFurnace(DiffuseMaterial{Spectrum(rho)}, L);
     for (PathStrategy strategy : kStrategies)
         for (const Ray &ray : RaysAtUnitSphere())
-            ExpectNear(EstimateLi(*scene, {5, false, strategy}, ray, 20000), rho * L,
+            ExpectNear(EstimateLi(*scene, PathTracer(5, strategy), ray, 20000), rho * L,
                        "diffuse, strategy " + ToString(strategy));
 }
 
@@ -131,7 +131,7 @@ TEST(RenderFurnace, FabricSphereReflectsItsDirectionalAlbedoTimesEnvironment) {
         FabricBxDF bxdf(SampledSpectrum(0.9f), 0.3f, FabricBxDF::ThreadDirection(30, 0));
         double expected = FabricDirectionalAlbedo(bxdf, frame.RenderToLocal(si.wo)) * L;
         for (PathStrategy strategy : kStrategies)
-            ExpectNear(EstimateLi(*scene, {5, false, strategy}, ray, 20000), expected,
+            ExpectNear(EstimateLi(*scene, PathTracer(5, strategy), ray, 20000), expected,
                        "fabric, strategy " + ToString(strategy));
     }
 }
@@ -146,7 +146,7 @@ TEST(RenderFurnace, LosslessGlassIsInvisibleInAWhiteFurnace) {
     for (Material glass : {Material(DielectricMaterial{}), Material(ThinDielectricMaterial{})}) {
         auto scene = SphereInFurnace(glass, L);
         for (const Ray &ray : RaysAtUnitSphere())
-            ExpectNear(EstimateLi(*scene, {100, false, PathStrategy::MIS}, ray, 20000), L,
+            ExpectNear(EstimateLi(*scene, PathTracer(100), ray, 20000), L,
                        "glass");
     }
 }
@@ -245,7 +245,7 @@ TEST(RenderDirect, DiffusePointUnderRectangularEmitterIsReflectanceTimesViewFact
     double expected = R * Le * 4 * CornerViewFactor(1, 1, 0.5);
     Ray down(Point3f(0, 0, 0.25f), Vector3f(0, 0, -1));
     for (PathStrategy strategy : kStrategies)
-        ExpectNear(EstimateLi(*scene, {1, false, strategy}, down, 40000), expected,
+        ExpectNear(EstimateLi(*scene, PathTracer(1, strategy), down, 40000), expected,
                    "strategy " + ToString(strategy));
 }
 
@@ -270,7 +270,7 @@ TEST(RenderDirect, DiffusePointUnderEmitterSkyAndSunForEitherChoiceOfInfiniteLig
             builder.SetLightSampler(lightSampler);
             builder.SetIntegrator({1, false, strategy});
             auto scene = builder.Build();
-            ExpectNear(EstimateLi(*scene, {1, false, strategy}, down, 40000), expected,
+            ExpectNear(EstimateLi(*scene, PathTracer(1, strategy), down, 40000), expected,
                        std::string(lightSampler) + ", strategy " + ToString(strategy));
         }
 }
@@ -283,8 +283,8 @@ TEST(RenderDirect, LightSamplingAloneRefusesASceneBuiltForMISThatLeavesItsSkyToB
     builder.AddLight(UniformInfiniteLight(Spectrum(0.4f), 1));
     builder.AddLight(DistantLight(Transform(), Spectrum(1.f), 1));
     auto scene = builder.Build();  // for MIS, the default
-    EXPECT_NO_THROW(PathIntegrator(*scene, {1, false, PathStrategy::MIS}));
-    EXPECT_THROW(PathIntegrator(*scene, {1, false, PathStrategy::Light}), std::invalid_argument);
+    EXPECT_NO_THROW(PathIntegrator(*scene, PathTracer(1)));
+    EXPECT_THROW(PathIntegrator(*scene, PathTracer(1, PathStrategy::Light)), std::invalid_argument);
 }
 
 TEST(RenderStrategies, AgreeWithinNoiseWithAnAreaLightAndFabric) {

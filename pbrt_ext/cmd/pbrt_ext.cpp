@@ -111,7 +111,8 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
                    "generator, with its default randomization (default: the scene's Sampler)")
         ->check([](const std::string &name) { return SamplerNameError(name).value_or(""); });
     app.add_option("--integrator", o.integrator,
-                   "path, volpath, bdpt, lightpath or sppm: the integrator, with the scene's "
+                   "path, volpath, bdpt, lightpath, sppm, mlt, simplepath, simplevolpath, "
+                   "randomwalk, ambientocclusion or function: the integrator, with the scene's "
                    "maxdepth and the others' defaults (default: the scene's Integrator)")
         ->check([](const std::string &name) { return IntegratorNameError(name).value_or(""); });
     app.add_option("--time-limit", o.timeLimitSeconds,
@@ -211,6 +212,12 @@ int RenderAndWriteImage(Scene &scene, const CommandLine &cmd) {
     }
     RenderStatistics stats = Render(scene, options);
     EndInterruptibleRender();
+    // The function integrator has written its error table; the film holds nothing.
+    if (scene.integratorOptions.type == IntegratorType::Function) {
+        if (!o.quiet)
+            std::fprintf(stderr, "pbrt_ext: wrote %s\n", scene.integratorOptions.function.outputFile.c_str());
+        return 0;
+    }
     WriteRender(scene, cmd, options.samples, identity, stats);
     if (o.stats)
         std::printf("%s", stats.ToString().c_str());

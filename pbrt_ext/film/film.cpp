@@ -86,10 +86,32 @@ void RGBFilm::PrefetchSplat(Point2f pFilm) {
 }
 
 void RGBFilm::AddSplat(Point2f pFilm, const SampledSpectrum &L, const SampledWavelengths &lambda) {
+    SplatInto(pFilm, L, lambda, ThreadSplatSums());
+}
+
+void RGBFilm::AddSplat(Point2f pFilm, const SampledSpectrum &L, const SampledWavelengths &lambda,
+                       std::vector<double> &sums) {
+    if (sums.empty()) sums.resize(3 * pixels.size());
+    SplatInto(pFilm, L, lambda, sums.data());
+}
+
+void RGBFilm::AddSplatSums(const std::vector<double> &sums) {
+    if (sums.empty())
+        return;
+    double *own = ThreadSplatSums();
+    for (size_t i = 0; i < sums.size(); ++i) {
+        if (own)
+            own[i] += sums[i];
+        else
+            splats[i].Add(sums[i]);
+    }
+}
+
+void RGBFilm::SplatInto(Point2f pFilm, const SampledSpectrum &L, const SampledWavelengths &lambda,
+                        double *own) {
     Bounds2i splatBounds = SplatBounds(pFilm);
     if (splatBounds.IsEmpty())
         return;
-    double *own = ThreadSplatSums();
     RGB rgb = ClampedSensorRGB(L, lambda);
     // The filter is separable: its values along each axis, once (on the stack unless the filter
     // is very wide).

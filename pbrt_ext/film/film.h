@@ -112,6 +112,15 @@ class RGBFilm {
     // integral when it reads the pixel), so that a splat adds what a camera sample of the same
     // radiance would. Thread-safe.
     void AddSplat(Point2f pFilm, const SampledSpectrum &L, const SampledWavelengths &lambda);
+    // The same into sums of the caller's own (3 a pixel, sized on first use; not thread-safe),
+    // for a render whose splats must add up in one order whatever the threads run: mlt's chains,
+    // split into parts that each keep their own sums, which AddSplatSums then adds to the
+    // film's in a fixed order, from one thread.
+    void AddSplat(Point2f pFilm, const SampledSpectrum &L, const SampledWavelengths &lambda,
+                  std::vector<double> &sums);
+    void AddSplatSums(const std::vector<double> &sums);
+    // Bytes of one set of splat sums (24 a pixel).
+    size_t SplatSumsBytes() const { return 3 * sizeof(double) * pixels.size(); }
     // Starts fetching the sums AddSplat(pFilm, ...) will add to. Splats land anywhere on the
     // film, so their sums are rarely cached (at 240x240, bdpt waited on them for two thirds of
     // AddSplat's time): a caller that knows where a splat lands before it has its value (a
@@ -193,6 +202,8 @@ class RGBFilm {
     // This thread's splat sums (3 a pixel), allocated on first use; null where the splats go
     // to the shared atomic sums.
     double *ThreadSplatSums();
+    // Spreads a splat over the pixels its filter covers, into own, or the shared sums if null.
+    void SplatInto(Point2f pFilm, const SampledSpectrum &L, const SampledWavelengths &lambda, double *own);
 
     size_t PixelIndex(Point2i p) const {
         Vector2i o = p - pixelBounds.pMin;

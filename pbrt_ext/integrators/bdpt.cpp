@@ -149,13 +149,15 @@ SampledSpectrum BDPTVertex::Le(const Scene &scene, const BDPTVertex &v,
     return SampledSpectrum(0.f);
 }
 
-BDPTIntegrator::BDPTIntegrator(Scene &scene, IntegratorOptions options)
+BDPTIntegrator::BDPTIntegrator(Scene &scene, IntegratorOptions options,
+                               std::optional<Float> cameraSampleArea)
     : scene(scene), film(scene.film), options(options), camera(scene.camera, scene.film),
       lightSampler(scene.lights) {
     Point3f center;
     scene.aggregate.WorldBound().BoundingSphere(&center, &sceneRadius);
     Point2i res = film.FullResolution();
-    cropScale = Float(res.x) * Float(res.y) / Float(film.PixelBounds().Area());
+    cropScale = Float(res.x) * Float(res.y) /
+                cameraSampleArea.value_or(Float(film.PixelBounds().Area()));
     film.EnableSplats();
     if (!options.visualizeStrategies && !options.visualizeWeights)
         return;
@@ -201,9 +203,10 @@ SampledSpectrum BDPTIntegrator::Li(RayDifferential ray, Point2f pFilm, SampledWa
     thread_local std::vector<BDPTVertex> cameraVertices, lightVertices;
     cameraVertices.resize(options.maxDepth + 2);
     lightVertices.resize(options.maxDepth + 1);
-    int nCamera = GenerateCameraSubpath(ray, lambda, sampler, rays, cameraVertices.data());
+    int nCamera = GenerateCameraSubpath(ray, lambda, sampler, rays, cameraVertices.data(),
+                                        options.maxDepth + 2);
     int nLight = GenerateLightSubpath(lambda, sampler, cameraVertices[0].time, rays,
-                                      lightVertices.data());
+                                      lightVertices.data(), options.maxDepth + 1);
     SampledSpectrum L(0.f);
     for (int t = 1; t <= nCamera; ++t)
         for (int s = 0; s <= nLight; ++s) {
@@ -229,16 +232,21 @@ SampledSpectrum BDPTIntegrator::Li(RayDifferential ray, Point2f pFilm, SampledWa
 }
 
 int BDPTIntegrator::GenerateCameraSubpath(const RayDifferential &ray, SampledWavelengths &lambda,
-                                          Sampler &sampler, RayCounts &rays, BDPTVertex *path) const {
+                                          Sampler &sampler, RayCounts &rays, BDPTVertex *path,
+                                          int maxVertices) const {
+    if (maxVertices == 0)
+        return 0;
     path[0] = CameraVertex(ray.o, Normal3f(0, 0, 0), ray.time, ray.medium, SampledSpectrum(1.f));
     Float pdfDir = camera.PDF_We(ray).dir;
-    return RandomWalk(lambda, ray, sampler, SampledSpectrum(1.f), pdfDir, options.maxDepth + 1,
+    return RandomWalk(lambda, ray, sampler, SampledSpectrum(1.f), pdfDir, maxVertices - 1,
                       TransportMode::Radiance, rays, path + 1) +
            1;
 }
 
 int BDPTIntegrator::GenerateLightSubpath(SampledWavelengths &lambda, Sampler &sampler, Float time,
-                                         RayCounts &rays, BDPTVertex *path) const {
+                                         RayCounts &rays, BDPTVertex *path, int maxVertices) const {
+    if (maxVertices == 0)
+        return 0;
     pstd::optional<SampledLight> sampled = lightSampler.Sample(sampler.Get1D());
     if (!sampled)
         return 0;
@@ -254,7 +262,7 @@ int BDPTIntegrator::GenerateLightSubpath(SampledWavelengths &lambda, Sampler &sa
     path[0] = LightVertex(sampled->lightIndex, light.Type(), ray.o, les->n, les->uv, time,
                           ray.medium, les->L, p_l);
     SampledSpectrum beta = les->L * les->AbsCosTheta(ray.d) / (p_l * les->pdfDir);
-    int nVertices = RandomWalk(lambda, ray, sampler, beta, les->pdfDir, options.maxDepth,
+    int nVertices = RandomWalk(lambda, ray, sampler, beta, les->pdfDir, maxVertices - 1,
                                TransportMode::Importance, rays, path + 1);
     // An infinite light's subpath starts at a direction, then a point on the scene's disk.
     if (path[0].IsInfiniteLight()) {

@@ -18,6 +18,7 @@
 #include "pbrt_ext/samplers/samplers.h"
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,7 +30,11 @@ struct BDPTVertex;  // bdpt.cpp
 class BDPTIntegrator {
   public:
     // Throws std::invalid_argument for a camera without importance (not perspective).
-    BDPTIntegrator(Scene &scene, IntegratorOptions options);
+    // cameraSampleArea: the film area, in pixels, that camera samples spread over (the pixel
+    // bounds' by default; mlt's sample bounds). Light paths splat over the whole film, so the
+    // t = 1 strategy's contributions scale by the full film's area over it.
+    BDPTIntegrator(Scene &scene, IntegratorOptions options,
+                   std::optional<Float> cameraSampleArea = std::nullopt);
 
     // The camera subpath starts with ray from the film position pFilm; t = 1 strategies go to
     // the film as splats, the rest is returned.
@@ -40,6 +45,19 @@ class BDPTIntegrator {
     // film's file (bdpt_dDD_sSS_tTT.exr, as pbrt-v4), scaled for the light paths per pixel.
     void WriteStrategyImages(Float splatScale) const;
 
+    // One strategy at a time, as Metropolis light transport makes paths (integrators/mlt.h):
+    // subpaths of at most maxVertices vertices (fewer where they end), and the connection of
+    // the first s light to the first t camera vertices, with its MIS weight applied and
+    // returned in *misWeight, and where a t = 1 connection lands on the film in *pRaster.
+    int GenerateCameraSubpath(const RayDifferential &ray, SampledWavelengths &lambda, Sampler &sampler,
+                              RayCounts &rays, BDPTVertex *path, int maxVertices) const;
+    int GenerateLightSubpath(SampledWavelengths &lambda, Sampler &sampler, Float time,
+                             RayCounts &rays, BDPTVertex *path, int maxVertices) const;
+    SampledSpectrum ConnectBDPT(SampledWavelengths &lambda, BDPTVertex *lightVertices,
+                                BDPTVertex *cameraVertices, int s, int t, Sampler &sampler,
+                                RayCounts &rays, pstd::optional<Point2f> *pRaster,
+                                Float *misWeight) const;
+
   private:
     // The MIS weight of strategy (s, t) for the path made of the first s light and t camera
     // vertices, where for s = 1 (t = 1) the light (camera) endpoint is the one the connection
@@ -49,10 +67,6 @@ class BDPTIntegrator {
     friend struct BDPTVertex;  // its densities need the camera, lights and scene
     friend struct BDPTTestAccess;  // tests/integrators/bdptmis_test.cpp checks the weights path by path
 
-    int GenerateCameraSubpath(const RayDifferential &ray, SampledWavelengths &lambda, Sampler &sampler,
-                              RayCounts &rays, BDPTVertex *path) const;
-    int GenerateLightSubpath(SampledWavelengths &lambda, Sampler &sampler, Float time,
-                             RayCounts &rays, BDPTVertex *path) const;
     int RandomWalk(SampledWavelengths &lambda, RayDifferential ray, Sampler &sampler,
                    SampledSpectrum beta, Float pdf, int maxDepth, TransportMode mode,
                    RayCounts &rays, BDPTVertex *path) const;
@@ -65,10 +79,6 @@ class BDPTIntegrator {
     // where the walk ends there.
     bool ScatterAtSurface(Walk &walk, const SurfaceInteraction &si, BSDF bsdf,
                           Sampler &sampler) const;
-    SampledSpectrum ConnectBDPT(SampledWavelengths &lambda, BDPTVertex *lightVertices,
-                                BDPTVertex *cameraVertices, int s, int t, Sampler &sampler,
-                                RayCounts &rays, pstd::optional<Point2f> *pRaster,
-                                Float *misWeight) const;
     SampledSpectrum ConnectToCamera(SampledWavelengths &lambda, BDPTVertex *lightVertices,
                                     BDPTVertex *cameraVertices, int s, Sampler &sampler, RayCounts &rays,
                                     pstd::optional<Point2f> *pRaster, Float *misWeight) const;

@@ -330,47 +330,125 @@ Sampler CreateSampler(const SceneEntity &e, Point2i fullResolution,
     });
 }
 
-IntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrides &overrides,
-                                       std::string *lightSampler) {
-    const ParameterDictionary &p = e.parameters;
-    // The command line's choice keeps only the scene's maxdepth: the other parameters are
-    // the scene's integrator's.
-    const bool overridden = overrides.integrator && *overrides.integrator != e.name;
-    const std::string name = overrides.integrator.value_or(e.name);
-    bool supported = name.empty() || !IntegratorNameError(name);
-    // The others (mlt, ambientocclusion, ...): volpath comes closest.
-    if (!supported)
-        Substitute(e, "Integrator", "\"volpath\"");
-    IntegratorOptions options;
-    options.type = name == "path"        ? IntegratorType::Path
-                   : name == "bdpt"      ? IntegratorType::BDPT
-                   : name == "lightpath" ? IntegratorType::LightPath
-                   : name == "sppm"      ? IntegratorType::SPPM
-                                         : IntegratorType::VolPath;
-    options.maxDepth = p.GetOneInt("maxdepth", 5);
-    options.strategy = overrides.strategy.value_or(PathStrategy::MIS);
-    options.photonSeed = overrides.seed;
-    if (overridden) {
-        *lightSampler = overrides.lightSampler.value_or("bvh");
-        return options;
-    }
-    if (options.type == IntegratorType::BDPT) {
+namespace {
+
+// The smallest positive parameter value.
+constexpr Float kTiny = std::numeric_limits<Float>::min();
+
+// An integrator's parameter that must lie in [min, max], read with its default; a ParseError at
+// its location otherwise, naming the integrator.
+template <typename T>
+T GetInRange(const ParameterDictionary &p, IntegratorType type, const std::string &name, T def,
+             T min, T max, const char *expected) {
+    T value;
+    if constexpr (std::is_integral_v<T>)
+        value = T(p.GetOneInt(name, int(def)));
+    else
+        value = T(p.GetOneFloat(name, Float(def)));
+    if (!(value >= min && value <= max))
+        throw ParseError(*p.Loc(name), std::string(IntegratorName(type)) + " \"" + name +
+                                           "\" must be " + expected);
+    return value;
+}
+
+void ReadMLTParameters(const ParameterDictionary &p, const RenderOverrides &overrides, MLTOptions &mlt) {
+    constexpr int kIntMax = std::numeric_limits<int>::max();
+    constexpr IntegratorType kMLT = IntegratorType::MLT;
+    mlt.bootstrapSamples = GetInRange(p, kMLT, "bootstrapsamples", 100000, 1, kIntMax, "at least 1");
+    mlt.chains = GetInRange(p, kMLT, "chains", 1000, 1, kIntMax, "at least 1");
+    mlt.mutationsPerPixel = GetInRange(p, kMLT, "mutationsperpixel", 100, 1, kIntMax, "at least 1");
+    // --spp is the mutations per pixel, as in pbrt-v4.
+    if (overrides.spp)
+        mlt.mutationsPerPixel = *overrides.spp;
+    mlt.largeStepProbability = GetInRange<Float>(p, kMLT, "largestepprobability", 0.3f, 0, 1, "in [0, 1]");
+    mlt.sigma = GetInRange<Float>(p, kMLT, "sigma", 0.01f, kTiny, Infinity, "positive");
+    mlt.seed = overrides.seed;
+}
+
+void ReadFunctionParameters(const ParameterDictionary &p, const RenderOverrides &overrides,
+                            FunctionOptions &function) {
+    std::string name = p.GetOneString("function", "step");
+    std::optional<TestFunction> f = TestFunctionFromName(name);
+    if (!f)
+        throw ParseError(*p.Loc("function"), "unknown function \"" + name + "\": expected step, "
+                         "diagonal, disk, checkerboard, rotatedcheckerboard or gaussian");
+    function.function = *f;
+    // pbrt-v4's: the table goes to --outfile, else to <function>-mse.txt, unless "filename" says.
+    function.outputFile =
+        p.GetOneString("filename", overrides.outFile.empty() ? name + "-mse.txt" : overrides.outFile);
+    function.skipBad = p.GetOneBool("skipbad", true);
+    function.imageFile = p.GetOneString("imagefilename", "");
+    function.seed = overrides.seed;
+}
+
+// The parameters each integrator reads besides maxdepth (pbrt-v4's X::Create).
+void ReadParameters(const ParameterDictionary &p, const RenderOverrides &overrides,
+                    IntegratorOptions &options, std::string *lightSampler) {
+    switch (options.type) {
+    case IntegratorType::SimplePath:
+        options.simplePath.sampleLights = p.GetOneBool("samplelights", true);
+        options.simplePath.sampleBSDF = p.GetOneBool("samplebsdf", true);
+        return;
+    case IntegratorType::AmbientOcclusion:
+        options.ambientOcclusion.cosSample = p.GetOneBool("cossample", true);
+        options.ambientOcclusion.maxDistance =
+            GetInRange(p, options.type, "maxdistance", Infinity, kTiny, Infinity, "positive");
+        return;
+    case IntegratorType::MLT:
+        ReadMLTParameters(p, overrides, options.mlt);
+        options.regularize = p.GetOneBool("regularize", false);
+        return;
+    case IntegratorType::Function:
+        ReadFunctionParameters(p, overrides, options.function);
+        return;
+    case IntegratorType::SimpleVolPath:
+    case IntegratorType::RandomWalk:
+        return;
+    case IntegratorType::BDPT:
         options.visualizeStrategies = p.GetOneBool("visualizestrategies", false);
         options.visualizeWeights = p.GetOneBool("visualizeweights", false);
-    }
-    if (options.type == IntegratorType::SPPM) {
+        break;
+    case IntegratorType::SPPM:
         options.photonsPerIteration = p.GetOneInt("photonsperiteration", -1);
-        options.initialRadius = p.GetOneFloat("radius", 1);
-        if (!(options.initialRadius > 0))
-            throw ParseError(*p.Loc("radius"), "sppm \"radius\" must be positive");
+        options.initialRadius = GetInRange<Float>(p, options.type, "radius", 1, kTiny, Infinity, "positive");
         options.photonSeed = p.GetOneInt("seed", overrides.seed);
+        break;
+    case IntegratorType::Path:
+    case IntegratorType::VolPath:
+    case IntegratorType::LightPath:
+        break;
     }
     options.regularize = p.GetOneBool("regularize", false);
     std::string sampler = p.GetOneString("lightsampler", "bvh");
     if (std::optional<std::string> error = LightSamplerNameError(sampler))
         throw ParseError(*p.Loc("lightsampler"), *error);
     *lightSampler = overrides.lightSampler.value_or(sampler);
-    if (supported)
+}
+
+}  // namespace
+
+IntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrides &overrides,
+                                   std::string *lightSampler) {
+    const ParameterDictionary &p = e.parameters;
+    const std::string name = overrides.integrator.value_or(e.name.empty() ? "volpath" : e.name);
+    std::optional<IntegratorType> type = IntegratorTypeFromName(name);
+    if (!type)
+        throw ParseError(e.loc, *IntegratorNameError(name));
+    IntegratorOptions options;
+    options.type = *type;
+    // ambientocclusion and function have no depth (pbrt-v4 does not read it for them).
+    if (options.type != IntegratorType::AmbientOcclusion && options.type != IntegratorType::Function)
+        options.maxDepth = GetInRange(p, options.type, "maxdepth", 5, 0, std::numeric_limits<int>::max(),
+                                      "at least 0");
+    options.strategy = overrides.strategy.value_or(PathStrategy::MIS);
+    options.photonSeed = overrides.seed;
+    *lightSampler = overrides.lightSampler.value_or("bvh");
+    // The command line's choice keeps only the scene's maxdepth: the other parameters are the
+    // scene's integrator's, with its defaults.
+    const bool overridden = overrides.integrator && *overrides.integrator != e.name;
+    static const ParameterDictionary kNone;
+    ReadParameters(overridden ? kNone : p, overrides, options, lightSampler);
+    if (!overridden)
         p.ReportUnused();
     return options;
 }

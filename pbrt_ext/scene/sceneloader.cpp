@@ -217,6 +217,32 @@ void AddInstances(const SceneDescription &scene, SceneBuilder &builder, Resolver
     }
 }
 
+// What an integrator needs of the camera, film and sampler; a ParseError where it lacks it.
+void CheckIntegratorFits(const SceneDescription &scene, const IntegratorOptions &integrator,
+                         const Camera &camera, const RGBFilm &film, const Sampler &sampler) {
+    const std::string name = IntegratorName(integrator.type);
+    const IntegratorType type = integrator.type;
+    // Paths traced from the lights need the camera's importance, which pbrt-v4 gives the
+    // perspective camera only.
+    bool fromLights = type == IntegratorType::BDPT || type == IntegratorType::LightPath ||
+                      type == IntegratorType::MLT;
+    if (fromLights && !camera.CastOrNullptr<PerspectiveCamera>())
+        throw ParseError(scene.integrator.loc, "Integrator \"" + name +
+                                                   "\" needs a perspective camera, not \"" +
+                                                   camera.Name() + "\"");
+    // sppm adds each pixel's estimate as RGB: it has no wavelengths for the bands, nor camera
+    // samples for the g-buffer; mlt's splats have no camera sample for it either.
+    if ((type == IntegratorType::SPPM && (film.Buckets() || film.GBuffer())) ||
+        (type == IntegratorType::MLT && film.GBuffer()))
+        throw ParseError(scene.film.loc, "Film \"" + scene.film.name + "\" needs the radiance of "
+                                         "camera samples, which " + name + " does not give: use "
+                                         "Film \"rgb\"");
+    if (type == IntegratorType::Function && sampler.Get<SobolSampler>())
+        throw ParseError(scene.integrator.loc,
+                         "the \"function\" integrator needs each pixel's own sample points: use "
+                         "Sampler \"paddedsobol\", not \"sobol\" (one sequence over the image)");
+}
+
 }  // namespace
 
 std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverrides &overrides) {
@@ -231,19 +257,7 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
     Sampler sampler = CreateSampler(scene.sampler, film.FullResolution(), overrides);
     std::string lightSampler;
     IntegratorOptions integrator = CreateIntegrator(scene.integrator, overrides, &lightSampler);
-    // Paths traced from the lights need the camera's importance, which pbrt-v4 gives the
-    // perspective camera only.
-    bool fromLights = integrator.type == IntegratorType::BDPT || integrator.type == IntegratorType::LightPath;
-    if (fromLights && !camera.CastOrNullptr<PerspectiveCamera>())
-        throw ParseError(scene.integrator.loc,
-                         "Integrator \"" + overrides.integrator.value_or(scene.integrator.name) +
-                             "\" needs a perspective camera, not \"" + camera.Name() + "\"");
-
-    // sppm adds each pixel's estimate as RGB: it has no wavelengths for the bands, nor camera
-    // samples for the g-buffer.
-    if (integrator.type == IntegratorType::SPPM && (film.Buckets() || film.GBuffer()))
-        throw ParseError(scene.film.loc, "Film \"" + scene.film.name + "\" needs the radiance of "
-                                         "camera samples; sppm gives RGB estimates: use Film \"rgb\"");
+    CheckIntegratorFits(scene, integrator, camera, film, sampler);
     SceneBuilder builder(std::move(camera), std::move(film), std::move(sampler));
     builder.SetIntegrator(integrator);
     builder.SetLightSampler(lightSampler);

@@ -362,7 +362,7 @@ TEST(RenderCancel, BeforeTheFirstWaveEndsTheImageIsTheOneSampleImage) {
         builder.AddSphere(UnitSphereAt(Point3f(0, 0, 0)),
                           builder.AddMaterial(DiffuseMaterial{Spectrum(0.5f)}));
         builder.AddLight(UniformInfiniteLight(Spectrum(1.f), 1));
-        builder.SetIntegrator({1, false, PathStrategy::Light});
+        builder.SetIntegrator(PathTracer(1, PathStrategy::Light));
         return builder.Build();
     };
     std::atomic<bool> cancel{true};

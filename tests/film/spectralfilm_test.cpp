@@ -134,7 +134,7 @@ TEST(SpectralFilm, BadParametersAreErrorsAtTheFilm) {
     EXPECT_THAT(LoadError("Film \"spectral\" \"integer nbuckets\" 0"),
                 testing::StartsWith(":2:1: error: Film \"spectral\": 0 spectral buckets"));
     EXPECT_THAT(LoadError("Film \"spectral\"", "Integrator \"sppm\""),
-                testing::HasSubstr("sppm gives RGB estimates"));
+                testing::HasSubstr("camera samples, which sppm does not give"));
     EXPECT_THAT(LoadError("Film \"spectral\" \"integer xresolution\" 20000 \"integer yresolution\" "
                           "20000 \"integer nbuckets\" 1000"),
                 testing::HasSubstr("error: the film's 20000 x 20000 pixels"));

@@ -28,12 +28,12 @@ struct BDPTTestAccess {
     static int CameraSubpath(const BDPTIntegrator &bdpt, const RayDifferential &ray,
                              SampledWavelengths &lambda, Sampler &sampler, BDPTVertex *path) {
         RayCounts rays;
-        return bdpt.GenerateCameraSubpath(ray, lambda, sampler, rays, path);
+        return bdpt.GenerateCameraSubpath(ray, lambda, sampler, rays, path, bdpt.options.maxDepth + 2);
     }
     static int LightSubpath(const BDPTIntegrator &bdpt, SampledWavelengths &lambda,
                             Sampler &sampler, Float time, BDPTVertex *path) {
         RayCounts rays;
-        return bdpt.GenerateLightSubpath(lambda, sampler, time, rays, path);
+        return bdpt.GenerateLightSubpath(lambda, sampler, time, rays, path, bdpt.options.maxDepth + 1);
     }
     static Float MISWeight(const BDPTIntegrator &bdpt, BDPTVertex *light, BDPTVertex *camera,
                            BDPTVertex *sampled, int s, int t) {

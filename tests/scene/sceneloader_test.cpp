@@ -121,7 +121,27 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                          "realistic-camera.pbrt", "spectral-film.pbrt",
                                          "gbuffer-film.pbrt", "displacement.pbrt",
                                          "colorspaces.pbrt", "measured.pbrt",
-                                         "subsurface.pbrt", "bump-maps.pbrt"));
+                                         "subsurface.pbrt", "bump-maps.pbrt",
+                                         "cornell-box-simplepath.pbrt",
+                                         "cornell-box-simplepath-uniform.pbrt",
+                                         "cornell-box-randomwalk.pbrt",
+                                         "cornell-box-ambientocclusion.pbrt",
+                                         "cornell-box-mlt.pbrt", "media-cloud-simplevolpath.pbrt"));
+
+// Every name pbrt-v4 accepts is its own integrator: none is substituted with a warning.
+TEST(SceneLoader, EveryPbrtV4IntegratorLoadsWithoutAWarning) {
+    for (const char *name : {"path", "volpath", "bdpt", "lightpath", "sppm", "mlt", "simplepath",
+                             "simplevolpath", "randomwalk", "ambientocclusion", "function"}) {
+        Log().quiet = true;
+        int before = Log().warnings;
+        std::unique_ptr<Scene> scene = LoadScene(
+            WriteScene("integrator.pbrt", "Camera \"perspective\"\nIntegrator \"" + std::string(name) +
+                                              "\"\nWorldBegin\nLightSource \"point\"\nShape \"sphere\"\n"),
+            Quick());
+        EXPECT_EQ(Log().warnings, before) << name;
+        EXPECT_STREQ(IntegratorName(scene->integratorOptions.type), name);
+    }
+}
 
 // Curves of each type with hair, a moving cylinder, a moving spherical camera, a bump map (ray
 // differentials), tangents S and a subdivision surface, all in one scene (also a fuzz seed).
@@ -432,7 +452,17 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
         // Paths traced from the lights need the camera's importance.
         {"load_bdpt_camera.pbrt",
          ":1:1: error: Integrator \"bdpt\" needs a perspective camera, not \"orthographic\""},
-        {"load_sppm_radius.pbrt", ":1:19: error: sppm \"radius\" must be positive"}};
+        {"load_sppm_radius.pbrt", ":1:19: error: sppm \"radius\" must be positive"},
+        {"load_mlt_camera.pbrt", ":1:1: error: Integrator \"mlt\" needs a perspective camera, not \"orthographic\""},
+        // Integrators: pbrt-v4's eleven names, and parameters out of range.
+        {"load_integrator_unknown.pbrt",
+         ":1:1: error: unknown Integrator \"whitted\": expected path, volpath, bdpt, lightpath, sppm, "
+         "mlt, simplepath, simplevolpath, randomwalk, ambientocclusion or function"},
+        {"load_ao_maxdistance.pbrt", ":1:31: error: ambientocclusion \"maxdistance\" must be positive"},
+        {"load_maxdepth_negative.pbrt", ":1:19: error: path \"maxdepth\" must be at least 0"},
+        {"load_function_unknown.pbrt",
+         ":1:23: error: unknown function \"sine\": expected step, diagonal, disk, checkerboard, "
+         "rotatedcheckerboard or gaussian"}};
     for (auto [name, expected] : cases) {
         std::string file = std::string(PBRT_EXT_TEST_DATA_DIR) + "/bad/" + name;
         std::string error = LoadError(file);

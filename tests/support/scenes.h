@@ -16,6 +16,15 @@ inline Camera LookingAt(Point3f eye, Point3f look, Float fovDegrees, Point2i res
                              fovDegrees);
 }
 
+// The path tracer's options: maxDepth bounces, by one strategy.
+inline IntegratorOptions PathTracer(int maxDepth, PathStrategy strategy = PathStrategy::MIS) {
+    IntegratorOptions o;
+    o.type = IntegratorType::Path;
+    o.maxDepth = maxDepth;
+    o.strategy = strategy;
+    return o;
+}
+
 inline RGBFilm BoxFilteredFilm(Point2i resolution) {
     return RGBFilm(resolution, Bounds2i(Point2i(0, 0), resolution), BoxFilter(), "test.exr");
 }
