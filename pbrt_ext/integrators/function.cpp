@@ -77,6 +77,14 @@ Point2f HaltonPoint(const HaltonSampler &halton, uint64_t a, uint64_t pixelSeed)
     return u;
 }
 
+// The 2D Sobol' point of index a, randomized per pixel as the padded Sobol' sampler randomizes,
+// but unpermuted: the first 2^k indices are a (0, k, 2)-net.
+Point2f SobolPoint(const PaddedSobolSampler &sobol, uint64_t a, uint64_t pixelSeed) {
+    uint64_t hash = Hash(pixelSeed);
+    return Point2f(SobolSample(a, 0, sobol.GetRandomizeStrategy(), uint32_t(hash)),
+                   SobolSample(a, 1, sobol.GetRandomizeStrategy(), uint32_t(hash >> 32)));
+}
+
 // A fresh jittered grid of n points (as close to square as n's factors allow) per pixel.
 double StratifiedEstimate(TestFunction f, int n, uint64_t pixelIndex) {
     int nx = int(std::sqrt(double(n)));
@@ -137,6 +145,7 @@ std::vector<std::pair<int, double>> FunctionErrorTable(const Scene &scene, const
     const int64_t nPixels = pixels.Area(), width = pixels.Diagonal().x;
     const int nSamples = scene.sampler.SamplesPerPixel();
     const HaltonSampler *halton = scene.sampler.Get<HaltonSampler>();
+    const PaddedSobolSampler *sobol = scene.sampler.Get<PaddedSobolSampler>();
     const bool stratified = scene.sampler.Get<StratifiedSampler>() != nullptr;
     std::vector<double> sums(size_t(nPixels), 0);  // per pixel, the sum of f over its samples
     tbb::enumerable_thread_specific<Sampler> samplers(scene.sampler);
@@ -159,6 +168,9 @@ std::vector<std::pair<int, double>> FunctionErrorTable(const Scene &scene, const
             } else if (halton) {
                 sum += EvaluateTestFunction(fo.function, HaltonPoint(*halton, uint64_t(sampleIndex),
                                                                      Hash(uint64_t(i), fo.seed)));
+            } else if (sobol) {
+                sum += EvaluateTestFunction(fo.function, SobolPoint(*sobol, uint64_t(sampleIndex),
+                                                                    Hash(uint64_t(i), fo.seed)));
             } else {
                 Sampler &sampler = samplers.local();
                 sampler.StartPixelSample(p, sampleIndex, 0);

@@ -3,9 +3,10 @@
 // whose integral is 1, from the sampler's first two dimensions (the pixel sample); after each
 // sample index, the mean squared error of the estimates over the pixels is a row of the table
 // written to "filename": "<samples> <mse>" per line. pbrt-v4's test functions and its
-// treatment of each sampler: Halton points randomized per pixel in the sampler's way, a fresh
-// jittered grid of n samples for the stratified sampler at each n, the sampler's own pixel
-// samples otherwise; "sobol" is refused (its pixel samples are one global sequence; paddedsobol
+// treatment of each sampler: 2D Halton and Sobol' points randomized per pixel in the halton and
+// paddedsobol samplers' ways (without the padded sampler's permutation of indices, so that the
+// first 2^k points are a net), a fresh jittered grid of n samples for the stratified sampler at
+// each n, the sampler's own pixel samples otherwise; "sobol" is refused (its pixel samples are one global sequence; paddedsobol
 // is the per-pixel one). With "skipbad" (the default), rows are written only at counts where
 // a sampler's points are well distributed (squares for stratified, powers of 2 for paddedsobol,
 // 2^k 3^k for halton).

@@ -383,6 +383,7 @@ class PaddedSobolSampler {
 
     static constexpr const char *Name() { return "paddedsobol"; }
     int SamplesPerPixel() const { return samplesPerPixel; }
+    RandomizeStrategy GetRandomizeStrategy() const { return randomize; }
 
     void StartPixelSample(Point2i p, int index, int dim = 0) {
         pixel = p;
