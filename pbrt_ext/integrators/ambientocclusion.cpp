@@ -20,8 +20,8 @@ SampledSpectrum AOIntegrator::Li(RayDifferential ray, SampledWavelengths &lambda
         ++rays.closest;
         if (!(hit = scene.Intersect(ray)))
             return SampledSpectrum(0.f);
-        scene.ComputeDifferentials(hit->intr, ray);
-        if (scene.GetBSDF(hit->intr, lambda))
+        // A surface with a material; its BSDF is not needed.
+        if (scene.ResolveMaterial(hit->intr) >= 0)
             break;
         ray = hit->intr.SpawnRay(ray.d);  // an interface: look past it
     }
