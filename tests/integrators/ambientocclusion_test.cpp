@@ -47,17 +47,7 @@ double OpenFraction() {
 
 // The mean's tolerance: 4 standard errors of the per-pixel values about their mean, plus the
 // closed form's variation over the pixels' points.
-double Tolerance(const RGBFilm &film, int c) {
-    double sum = 0, sumSquares = 0, n = 0;
-    for (Point2i p : film.PixelBounds()) {
-        double x = film.GetPixelRGB(p)[c];
-        sum += x;
-        sumSquares += x * x;
-        ++n;
-    }
-    double mean = sum / n, variance = (sumSquares - n * mean * mean) / (n - 1);
-    return 4 * std::sqrt(variance / n) + 1e-3;
-}
+double Tolerance(const RGBFilm &film, int c) { return 4 * StandardErrorOfMean(film, c) + 1e-3; }
 
 class AmbientOcclusion : public testing::TestWithParam<bool> {};
 

@@ -126,7 +126,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                          "cornell-box-simplepath-uniform.pbrt",
                                          "cornell-box-randomwalk.pbrt",
                                          "cornell-box-ambientocclusion.pbrt",
-                                         "cornell-box-mlt.pbrt", "media-cloud-simplevolpath.pbrt"));
+                                         "cornell-box-mlt.pbrt", "caustic-fabric-mlt.pbrt",
+                                         "media-cloud-simplevolpath.pbrt"));
 
 // Every name pbrt-v4 accepts is its own integrator: none is substituted with a warning.
 TEST(SceneLoader, EveryPbrtV4IntegratorLoadsWithoutAWarning) {

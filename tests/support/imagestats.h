@@ -37,6 +37,19 @@ inline ChannelDifference MeanDifference(const RGBFilm &a, const RGBFilm &b) {
     return d;
 }
 
+// The standard error of channel c's mean over the pixels, the pixels taken as independent.
+inline double StandardErrorOfMean(const RGBFilm &film, int c) {
+    double sum = 0, sumSquares = 0, n = 0;
+    for (Point2i p : film.PixelBounds()) {
+        double x = film.GetPixelRGB(p)[c];
+        sum += x;
+        sumSquares += x * x;
+        ++n;
+    }
+    double mean = sum / n;
+    return std::sqrt((sumSquares - n * mean * mean) / (n - 1) / n);
+}
+
 // The per-channel mean over the pixels.
 inline RGB MeanRGB(const RGBFilm &film) {
     double sum[3] = {0, 0, 0}, n = 0;
