@@ -1,4 +1,5 @@
-"""A study's results in SQLite, beside the study file (<study>.study/results.sqlite).
+"""A study's results in SQLite, beside the study file (<study>.study/results.sqlite): the renders'
+relMSE, the references, and the function integrator's error tables.
 
 One row per configuration, keyed by the configuration (studyfile.Study.configuration_key): a
 result is inserted once and never replaced, so a rerun after a stop or a fault neither loses
@@ -6,6 +7,7 @@ nor duplicates one. Each row is committed as it arrives, so the database holds e
 render whenever the study stops (Ctrl-C, a killed client). Only the client writes.
 """
 import datetime
+import json
 import os
 import sqlite3
 
@@ -20,6 +22,14 @@ CREATE TABLE IF NOT EXISTS results (
     relmse REAL,
     message TEXT,          -- pbrt_ext's error where it failed
     worker TEXT, binary_version TEXT, scene_hash TEXT,
+    finished_at TEXT NOT NULL
+);
+CREATE TABLE IF NOT EXISTS function_results (
+    key TEXT PRIMARY KEY,
+    function TEXT NOT NULL, sampler TEXT NOT NULL, spp INTEGER NOT NULL, seed INTEGER NOT NULL,
+    status TEXT NOT NULL CHECK (status IN ('ok', 'failed')),
+    rows TEXT,             -- JSON [[samples, mse], ...]: the function integrator's table
+    wall_seconds REAL, message TEXT, worker TEXT, binary_version TEXT,
     finished_at TEXT NOT NULL
 );
 CREATE TABLE IF NOT EXISTS study_references (
@@ -67,6 +77,28 @@ class Database:
 
     def results(self):
         return [dict(row) for row in self.connection.execute("SELECT * FROM results ORDER BY rowid")]
+
+    def function_keys(self):
+        return {row["key"] for row in self.connection.execute("SELECT key FROM function_results")}
+
+    def add_function_result(self, key, config, record):
+        """Inserts the function integrator's table unless one is stored for key."""
+        fields = ["function", "sampler", "spp", "seed"]
+        values = [config[f] for f in fields] + [
+            record["status"], json.dumps(record.get("rows")), record.get("wall_seconds"),
+            record.get("message"), record.get("worker"), record.get("binary_version")]
+        with self.connection:
+            self.connection.execute(
+                "INSERT OR IGNORE INTO function_results (key, function, sampler, spp, seed, status, "
+                "rows, wall_seconds, message, worker, binary_version, finished_at) "
+                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)", [key, *values, _now()])
+
+    def function_results(self):
+        rows = [dict(row) for row in self.connection.execute(
+            "SELECT * FROM function_results ORDER BY rowid")]
+        for row in rows:
+            row["rows"] = json.loads(row["rows"]) if row["rows"] else None
+        return rows
 
     def reference(self, scene):
         row = self.connection.execute("SELECT * FROM study_references WHERE scene = ?",

@@ -23,8 +23,17 @@
     [report]
     baseline = { fabric_sampler = "best", strategy = "mis" }   # what ratios are relative to
 
+    [functions]                     # pbrt-v4's function integrator, with each of "samplers"
+    names = ["step", "gaussian"]    # its test functions (step, diagonal, disk, checkerboard,
+                                    # rotatedcheckerboard, gaussian)
+    spp = 1024                      # samples per pixel: the last row of each table
+    resolution = [64, 64]           # pixels, each one estimate (default 64 x 64)
+
 A list left out (or empty) is the scene's own choice. Every combination of the lists is one
 configuration. A reference uses MIS, the best fabric sampler and the scene's other choices.
+With [functions], every combination of its names, "samplers" and the seeds is also run by the
+function integrator (no scene, no reference): its table of mean squared errors against the
+sample count joins the report.
 """
 import hashlib
 import itertools
@@ -76,6 +85,9 @@ class Study:
     reference_slices: int = 8
     reference_integrator: dict = field(default_factory=dict)
     baseline: dict = field(default_factory=dict)
+    functions: list = field(default_factory=list)   # [functions] names
+    function_spp: int = 1024
+    function_resolution: list = field(default_factory=lambda: [64, 64])
 
     @property
     def folder(self):
@@ -119,6 +131,31 @@ class Study:
         if scene.name in self.reference_integrator:
             args += ["--integrator", self.reference_integrator[scene.name]]
         return args
+
+    def function_samplers(self):
+        """The samplers the function integrator runs: not "sobol", whose pixel samples are one
+        sequence over the image (paddedsobol is the per-pixel one), as pbrt-v4 refuses it."""
+        return [s for s in self.choices["sampler"] if s != "sobol"]
+
+    def function_configurations(self):
+        """Every (function, sampler, seed) of [functions]: dicts with spp."""
+        for function, sampler, seed in itertools.product(self.functions, self.function_samplers(),
+                                                        self.seeds):
+            yield {"function": function, "sampler": sampler, "spp": self.function_spp, "seed": seed}
+
+    def function_key(self, config):
+        return json.dumps({**config, "resolution": self.function_resolution}, sort_keys=True)
+
+    def function_scene(self, config):
+        """The scene file's text: the function integrator alone (the sampler comes from args)."""
+        x, y = self.function_resolution
+        return (f'Film "rgb" "integer xresolution" {x} "integer yresolution" {y}\n'
+                f'Integrator "function" "string function" "{config["function"]}"\n'
+                'Camera "perspective"\nWorldBegin\n')
+
+    def function_args(self, config):
+        return ["--sampler", config["sampler"], "--seed", str(config["seed"]), "--spp",
+                str(config["spp"]), "--nthreads", str(self.threads)]
 
     def reference_slices_of(self):
         """The sample ranges of the reference's slices: as equal as the count allows."""
@@ -168,6 +205,32 @@ def _positive(table, key, path, kind, default, where=""):
     return value
 
 
+TEST_FUNCTIONS = {"step", "diagonal", "disk", "checkerboard", "rotatedcheckerboard", "gaussian"}
+
+
+def _load_functions(table, study, path):
+    """[functions] into the study; StudyError for what the function integrator cannot run."""
+    if not table:
+        return
+    unknown = sorted(set(table) - {"names", "spp", "resolution"})
+    if unknown:
+        raise StudyError(f"{path}: error: unknown key \"functions.{unknown[0]}\"; expected names, "
+                         "spp or resolution")
+    study.functions = _list(table, "names", path, str)
+    bad = [n for n in study.functions if n not in TEST_FUNCTIONS]
+    if bad or not study.functions:
+        raise StudyError(f"{path}: error: \"functions.names\" must name some of "
+                         f"{', '.join(sorted(TEST_FUNCTIONS))}" + (f", not \"{bad[0]}\"" if bad else ""))
+    if study.choices["sampler"] == [None]:
+        raise StudyError(f"{path}: error: [functions] needs \"samplers\" to compare")
+    study.function_spp = _positive(table, "spp", path, int, 1024, "functions.")
+    resolution = table.get("resolution", [64, 64])
+    if not isinstance(resolution, list) or len(resolution) != 2 or not all(
+            isinstance(v, int) and not isinstance(v, bool) and v > 0 for v in resolution):
+        raise StudyError(f"{path}: error: \"functions.resolution\" must be two positive integers")
+    study.function_resolution = resolution
+
+
 def load(path):
     """The study of the file; raises StudyError for anything missing or misspelt."""
     path = os.path.abspath(path)
@@ -177,7 +240,7 @@ def load(path):
     except (OSError, tomllib.TOMLDecodeError) as e:
         raise StudyError(f"{path}: error: {e}") from e
     known = {"name", "scenes", "spp", "seeds", "resolution", "threads", "timeout", "binary",
-             "reference", "report", *DIMENSIONS}
+             "reference", "report", "functions", *DIMENSIONS}
     unknown = sorted(set(data) - known)
     if unknown:
         raise StudyError(f"{path}: error: unknown key \"{unknown[0]}\"; expected one of "
@@ -215,6 +278,7 @@ def load(path):
         reference_slices=_positive(reference, "slices", path, int, 8, "reference."),
         reference_integrator=reference.get("integrator", {}),
         baseline=data.get("report", {}).get("baseline", {}))
+    _load_functions(data.get("functions", {}), study, path)
     if study.reference_seed in study.seeds:
         raise StudyError(f"{path}: error: the reference's seed {study.reference_seed} is one of "
                          "\"seeds\": a configuration would share its samples")

@@ -8,9 +8,12 @@ Writes into the output folder
                  low-discrepancy samplers beat 1 / spp, no single c fits), the fabric samplers'
                  uniform : paper : best where they vary, the cost per task, and the failures;
   relmse.png     relMSE against render time, log-log, a panel per scene, a line per series;
-  efficiency.png efficiency relative to the baseline series, per scene,
+  efficiency.png efficiency relative to the baseline series, per scene;
+  functions.png  with [functions]: each sampler's mean squared error against the sample count,
+                 log-log, a panel per test function (report.md has their table),
 and prints report.md.
 """
+import math
 import os
 import statistics
 from collections import defaultdict
@@ -196,12 +199,108 @@ def plot(series, dims, fits, study, out):
     plt.close(fig)
 
 
+MARKERS = "osD^v<>Ph*"
+
+
+def mean_table(tables):
+    """The rows (n, MSE) common to every seed's table, MSE averaged over the seeds."""
+    common = set.intersection(*({n for n, _ in t} for t in tables))
+    return sorted((n, statistics.fmean(dict(t)[n] for t in tables)) for n in common)
+
+
+def plotted_rows(rows):
+    """The rows a sampler is compared at: its rows, or for a sampler that writes every count the
+    powers of two; those with an error above 0 (log axes)."""
+    dense = len(rows) == rows[-1][0]
+    return [(n, mse) for n, mse in rows if mse > 0 and (not dense or n & (n - 1) == 0)]
+
+
+def convergence_order(rows):
+    """The least-squares slope of log MSE against log n over the rows from n = 4 on: -1 for
+    independent samples, steeper for point sets that stratify the function's features. Where a
+    sampler writes a row at every count, over the powers of two only, as the others' rows are
+    (pmj02bn's pixel samples are a random subset of its set between them); None where fewer than
+    two rows have an error above 0."""
+    pts = [(math.log(n), math.log(mse)) for n, mse in plotted_rows(rows) if n >= 4]
+    if len(pts) < 2:
+        return None
+    mx, my = statistics.fmean(p[0] for p in pts), statistics.fmean(p[1] for p in pts)
+    return (sum((x - mx) * (y - my) for x, y in pts) / sum((x - mx) ** 2 for x, _ in pts))
+
+
+def function_tables(study, results):
+    """function -> sampler -> the mean table over the seeds, from the stored ok results."""
+    tables = defaultdict(lambda: defaultdict(list))
+    for r in results:
+        if r["status"] == "ok" and r["rows"]:
+            tables[r["function"]][r["sampler"]].append(r["rows"])
+    return {f: {s: mean_table(ts) for s, ts in by.items()} for f, by in tables.items()}
+
+
+def function_lines(study, tables, failed):
+    if not tables and not failed:
+        return []
+    x, y = study.function_resolution
+    lines = ["## The samplers on the function integrator's test functions", "",
+             f"pbrt-v4's function integrator, {x} x {y} pixels each estimating a test function's "
+             f"integral (1) from its sampler's first two dimensions, {study.function_spp} samples "
+             f"per pixel, mean over seeds {study.seeds}: the mean squared error at the last count "
+             "each sampler writes a row at, MSE x n (equal for every n where samples are "
+             "independent), and the convergence order, the slope of log MSE against log n "
+             "(-1 for independent samples) over the counts from 4 on that each sampler writes rows "
+             "at, the powers of two for those that write every count; – where the error is 0 "
+             "throughout."
+             + (" sobol is left out: its pixel samples are one sequence over the image, which the "
+                "function integrator refuses (paddedsobol is the per-pixel one)."
+                if "sobol" in study.choices["sampler"] else ""), ""]
+    for function in study.functions:
+        by_sampler = tables.get(function, {})
+        lines += [f"### {function}", "", "| sampler | n | MSE | MSE x n | order |", "|---|---|---|---|---|"]
+        for sampler in study.function_samplers():
+            rows = by_sampler.get(sampler)
+            if rows:
+                n, mse = rows[-1]
+                order = convergence_order(rows)
+                lines.append(f"| {sampler} | {n} | {mse:.3g} | {mse * n:.3g} | "
+                             f"{'–' if order is None else f'{order:.2f}'} |")
+        lines.append("")
+    for r in failed:
+        lines.append(f"- {r['function']} with {r['sampler']}, seed {r['seed']}: failed: {r['message']}")
+    return lines + ([""] if failed else [])
+
+
+def plot_functions(study, tables, out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    functions = [f for f in study.functions if f in tables]
+    fig, axes = plt.subplots(1, len(functions), figsize=(4.5 * len(functions), 4.2), squeeze=False)
+    samplers = study.function_samplers()
+    for ax, function in zip(axes.flat, functions):
+        for i, sampler in enumerate(samplers):
+            rows = plotted_rows(tables[function].get(sampler) or [])
+            if rows:
+                ax.loglog([n for n, _ in rows], [m for _, m in rows], marker=MARKERS[i % len(MARKERS)],
+                          markersize=3, color=f"C{i % 10}", label=sampler)
+        ax.set(title=f"{function} (up to {study.function_spp} spp)", xlabel="samples per pixel",
+               ylabel="mean squared error (0: not drawn)")
+        ax.grid(True, which="both", alpha=0.3)
+    handles, names = axes.flat[0].get_legend_handles_labels()
+    fig.legend(handles, names, loc="lower center", ncol=min(len(names), 7), fontsize=8)
+    fig.tight_layout(rect=(0, 0.08, 1, 1))
+    fig.savefig(os.path.join(out, "functions.png"), dpi=110)
+    plt.close(fig)
+
+
 def report(study, out):
     database = Database(study.database)
     rows = database.results()
     references = database.references()
+    function_results = database.function_results()
+    tables = function_tables(study, function_results)
+    failed_tables = [r for r in function_results if r["status"] != "ok"]
     database.close()
-    if not rows:
+    if not rows and not tables:
         print(f"{study.database}: no results yet (scripts/study run {study.path})")
         return 1
     dims = varying(study)
@@ -215,10 +314,13 @@ def report(study, out):
              f"mean over seeds {study.seeds}; efficiency is 1 / (relMSE x seconds).", ""]
     for scene in sorted(series):
         lines += scene_table(study, dims, scene, series[scene], fits[scene]) + [""]
+    lines += function_lines(study, tables, failed_tables)
     lines += fabric_sampler_lines(dims, fits) + cost_lines(rows) + failure_lines(rows)
     os.makedirs(out, exist_ok=True)
     if series:
         plot(series, dims, fits, study, out)
+    if tables:
+        plot_functions(study, tables, out)
     text = "\n".join(lines)
     with open(os.path.join(out, "report.md"), "w") as f:
         f.write(text)

@@ -3,7 +3,8 @@
 Each scene's reference is rendered first, split into sample slices over the workers (at the
 higher priority) and merged exactly (pbrt_ext merge); the scene's configurations are submitted
 once its merge is done. Every configuration without a stored result is one task that runs
-pbrt_ext and computes relMSE against the reference on its worker. Results are stored as they
+pbrt_ext and computes relMSE against the reference on its worker; so is every function
+integrator table of [functions] without a stored one. Results are stored as they
 arrive (studydb). A configuration that fails is stored as failed with pbrt_ext's message and
 not retried (Dask retries a task only when its worker dies, up to three times).
 
@@ -30,6 +31,7 @@ class StudyRun:
         self.kind = {}      # future -> ("slice", scene) | ("merge", scene) | ("config", key, config)
         self.work = {}      # future -> its samples per pixel, what the progress bar weighs
         self.todo = {}      # scene name -> [(key, config)] without a stored result
+        self.function_todo = []  # [(key, config)] of [functions] without a stored table
         self.slices = {}    # scene name -> the outcomes of its reference's finished slices
         self.progress = None
 
@@ -41,7 +43,11 @@ class StudyRun:
             key = self.study.configuration_key(config)
             if key not in done:
                 self.todo[config["scene"]].append((key, config))
-        return sum(len(t) for t in self.todo.values()), len(done)
+        tables = self.db.function_keys()
+        self.function_todo = [(self.study.function_key(c), c) for c in self.study.function_configurations()
+                              if self.study.function_key(c) not in tables]
+        todo = sum(len(t) for t in self.todo.values()) + len(self.function_todo)
+        return todo, len(done) + len(tables)
 
     def stored_reference(self, scene):
         row = self.db.reference(scene.name)
@@ -71,6 +77,12 @@ class StudyRun:
                             _job(self.study, scene, self.study.render_args(config)), reference,
                             kind=("config", key, config), work=config["spp"])
                 for key, config in self.todo[scene.name]]
+
+    def submit_functions(self):
+        return [self.submit(studytasks.function_table, self.study.binary, self.study.function_scene(c),
+                            self.study.function_args(c), self.study.timeout,
+                            kind=("function", key, c), work=c["spp"])
+                for key, c in self.function_todo]
 
     def store_result(self, key, config, outcome):
         scene = next(s for s in self.study.scenes if s.name == config["scene"])
@@ -123,6 +135,9 @@ class StudyRun:
             return self.slice_done(kind[1], outcome)
         if kind[0] == "merge":
             return self.merge_done(kind[1], outcome)
+        if kind[0] == "function":
+            self.db.add_function_result(kind[1], kind[2], outcome)
+            return []
         _, key, config = kind
         self.store_result(key, config, outcome)
         return []
@@ -132,7 +147,8 @@ class StudyRun:
         from distributed import as_completed
         todo, done = self.plan()
         pending, references, work = as_completed(), 0, sum(
-            c["spp"] for t in self.todo.values() for _, c in t)
+            c["spp"] for t in self.todo.values() for _, c in t) + sum(
+            c["spp"] for _, c in self.function_todo)
         for scene in self.study.scenes:
             reference = self.stored_reference(scene)
             if reference:
@@ -143,6 +159,8 @@ class StudyRun:
                 work += self.study.reference_spp
             for future in futures:
                 pending.add(future)
+        for future in self.submit_functions():
+            pending.add(future)
         self.stream.write(f"study {self.study.name}: {todo} configurations to render, {done} "
                           f"stored; {references} references to render\n")
         tasks = todo + references * (len(self.study.reference_slices_of()) + 1)
@@ -150,7 +168,10 @@ class StudyRun:
         for future in pending:
             for unblocked in self.finish(future):
                 pending.add(unblocked)
-        return len(self.db.keys("failed") & {k for t in self.todo.values() for k, _ in t})
+        tables = {k for k, _ in self.function_todo}
+        failed_tables = sum(1 for r in self.db.function_results()
+                            if r["status"] == "failed" and r["key"] in tables)
+        return len(self.db.keys("failed") & {k for t in self.todo.values() for k, _ in t}) + failed_tables
 
 
 def run(study, client, retry_failed=False, stream=sys.stderr):

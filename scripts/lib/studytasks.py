@@ -1,6 +1,6 @@
 """What a Dask worker runs for scripts/study and scripts/render-distributed: pbrt_ext as a
-subprocess (one render, one slice or one merge), timed, and for a study's configuration its
-relMSE against the reference.
+subprocess (one render, one slice, one merge or one function integrator's error table), timed,
+and for a study's configuration its relMSE against the reference.
 
 Self-contained (the standard library, NumPy and OpenImageIO): the client ships this file to
 every worker (Client.upload_file), so a worker needs no checkout, only the binary, the scenes and
@@ -123,6 +123,24 @@ def render_configuration(job, reference):
             except RuntimeError as e:
                 record.update(status="failed", message=str(e))
     record["wall_seconds"] = time.perf_counter() - start  # reading the reference included
+    return record
+
+
+def function_table(binary, scene_text, args, timeout):
+    """pbrt_ext's function integrator on scene_text (a scene of the Integrator "function"
+    alone) with args (--sampler, --seed, --spp): {"status", "message", "wall_seconds", "rows":
+    [[n, mse], ...], "worker", "binary_version"}."""
+    with tempfile.TemporaryDirectory(prefix="pbrt_ext_study_") as folder:
+        scene, table = os.path.join(folder, "function.pbrt"), os.path.join(folder, "mse.txt")
+        with open(scene, "w") as f:
+            f.write(scene_text)
+        record = run_pbrt_ext(binary, ["--quiet", *args, "--outfile", table, scene], timeout)
+        record["rows"] = None
+        if record["status"] == "ok":
+            with open(table) as f:
+                record["rows"] = [[int(n), float(mse)] for n, mse in (line.split() for line in f)]
+    record["worker"] = worker_name()
+    record["binary_version"] = binary_version(binary)
     return record
 
 

@@ -7,6 +7,7 @@ failed with pbrt_ext's message while the rest goes on; a distributed render equa
 Run by ctest with PBRT_EXT_CLI set to the pbrt_ext binary. Each study renders films of 32x24 or
 64x48 pixels, seconds in all.
 """
+import json
 import os
 import shutil
 import signal
@@ -119,6 +120,38 @@ class Study(StudyCase):
         self.assertIn("### cylinder_r0.1", report.stdout)
         self.assertIn("No configuration failed.", report.stdout)
 
+    def test_function_tables_join_the_study_and_its_report(self):
+        path = self.write_study(
+            f'binary = "{BINARY}"\nscenes = ["{SCENES}/cylinder_r0.1.pbrt"]\nspp = [4]\n'
+            'samplers = ["independent", "sobol", "paddedsobol"]\nseeds = [0, 1]\nresolution = [16, 12]\n'
+            '[reference]\nspp = 16\nslices = 2\n'
+            '[functions]\nnames = ["step", "gaussian"]\nspp = 64\nresolution = [16, 16]\n')
+        done = self.run_study(path)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        # 3 samplers x 2 seeds renders, and 2 functions x 2 samplers (sobol is left out) x 2
+        # seeds tables.
+        self.assertIn("14 configurations to render, 0 stored", done.stderr)
+        database = os.path.splitext(path)[0] + ".study/results.sqlite"
+        with sqlite3.connect(database) as connection:
+            tables = connection.execute("SELECT function, sampler, seed, status, rows FROM "
+                                        "function_results").fetchall()
+        self.assertEqual(len(tables), 8)
+        self.assertEqual({t[1] for t in tables}, {"independent", "paddedsobol"})
+        for function, sampler, seed, status, rows in tables:
+            self.assertEqual(status, "ok", (function, sampler, seed))
+            counts = [n for n, _ in json.loads(rows)]
+            # paddedsobol writes rows at powers of two only (skipbad), independent at every n.
+            self.assertEqual(counts, [1, 2, 4, 8, 16, 32, 64] if sampler == "paddedsobol"
+                             else list(range(1, 65)))
+        again = self.run_study(path)
+        self.assertIn("0 configurations to render, 14 stored", again.stderr)
+        report = subprocess.run([STUDY, "report", path], capture_output=True, text=True, timeout=TIMEOUT)
+        self.assertEqual(report.returncode, 0, report.stderr)
+        self.assertIn("### gaussian", report.stdout)
+        self.assertIn("| paddedsobol | 64 |", report.stdout)
+        self.assertIn("sobol is left out", report.stdout)
+        self.assertTrue(os.path.exists(os.path.splitext(path)[0] + ".study/functions.png"))
+
     def test_interrupted_study_resumes_with_the_rest(self):
         path = self.slow_study()
         process = self.start_study(path)
@@ -221,6 +254,10 @@ class StudyFileErrors(StudyCase):
             scene + 'resolution = [32]\n': '"resolution" must be two positive integers',
             scene + '[reference]\nslices = -2\n': '"reference.slices" must be a positive integer',
             scene + '[reference]\nseed = 0\n': "the reference's seed 0 is one of",
+            scene + '[functions]\nnames = ["sine"]\n': '"functions.names" must name some of',
+            scene + '[functions]\nnames = ["step"]\n': '[functions] needs "samplers"',
+            scene + 'samplers = ["halton"]\n[functions]\nnames = ["step"]\nspp = 0\n':
+                '"functions.spp" must be a positive integer',
             'scenes = [\n': "error: ",
         }
         for text, message in cases.items():
