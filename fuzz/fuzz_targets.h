@@ -43,6 +43,9 @@ void FuzzSlice(std::span<const uint8_t> data);
 void FuzzLens(std::span<const uint8_t> data);
 // An RGL .bsdf file read as a measured BRDF, evaluated and sampled (measured_target.cpp).
 void FuzzMeasured(std::span<const uint8_t> data);
+// A guiding tree file (--guiding-load) after its header, read, sampled and evaluated
+// (guidingtree_target.cpp).
+void FuzzGuidingTree(std::span<const uint8_t> data);
 
 struct FuzzTarget {
     std::string_view name;  // as scripts/fuzz and tests/data/fuzz/<name>/ call it
@@ -54,6 +57,6 @@ inline constexpr FuzzTarget kFuzzTargets[] = {
     {"parser", FuzzParser}, {"ply", FuzzPly},     {"image", FuzzImage}, {"pngexr", FuzzPngExr},
     {"stb", FuzzStb},       {"fabric", FuzzFabric}, {"scene", FuzzScene},
     {"nanovdb", FuzzNanoVDB}, {"slice", FuzzSlice}, {"lens", FuzzLens},
-    {"measured", FuzzMeasured}};
+    {"measured", FuzzMeasured}, {"guidingtree", FuzzGuidingTree}};
 
 }  // namespace pbrt::fuzz

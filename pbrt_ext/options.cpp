@@ -66,7 +66,8 @@ constexpr std::pair<const char *, IntegratorType> kIntegrators[] = {
     {"simplevolpath", IntegratorType::SimpleVolPath},
     {"randomwalk", IntegratorType::RandomWalk},
     {"ambientocclusion", IntegratorType::AmbientOcclusion},
-    {"function", IntegratorType::Function}};
+    {"function", IntegratorType::Function},
+    {"guidedpath", IntegratorType::GuidedPath}};
 
 constexpr std::pair<const char *, TestFunction> kTestFunctions[] = {
     {"step", TestFunction::Step},
@@ -105,7 +106,7 @@ std::optional<std::string> IntegratorNameError(const std::string &name) {
     if (IntegratorTypeFromName(name))
         return {};
     return "unknown Integrator \"" + name + "\": expected path, volpath, bdpt, lightpath, sppm, mlt, "
-           "simplepath, simplevolpath, randomwalk, ambientocclusion or function";
+           "simplepath, simplevolpath, randomwalk, ambientocclusion, function or guidedpath";
 }
 
 }  // namespace pbrt

@@ -39,6 +39,7 @@ enum class IntegratorType {
     RandomWalk,     // "randomwalk": uniform directions, no light sampling (integrators/randomwalk.h)
     AmbientOcclusion,  // "ambientocclusion" (integrators/ambientocclusion.h)
     Function,       // "function": sample generators on test functions (integrators/function.h)
+    GuidedPath,     // "guidedpath": path tracing guided by a learned SD-tree (integrators/guidedpath.h)
 };
 
 // "path", "volpath", ...; none for a name pbrt-v4 does not have.
@@ -83,6 +84,14 @@ struct FunctionOptions {
     int seed = 0;
 };
 
+// guidedpath: the probability of sampling the BSDF rather than the learned distribution, the
+// SD-tree's memory limit, and a tree to write after training or to read instead of training.
+struct GuidingOptions {
+    Float bsdfFraction = 0.5f;
+    size_t maxBytes = size_t(256) << 20;
+    std::string saveFile, loadFile;
+};
+
 // The integrator a scene asks for and its parameters (pbrt-v4's Integrator directive).
 struct IntegratorOptions {
     int maxDepth = 5;
@@ -104,6 +113,7 @@ struct IntegratorOptions {
     AmbientOcclusionOptions ambientOcclusion = {};
     MLTOptions mlt = {};
     FunctionOptions function = {};
+    GuidingOptions guiding = {};
 };
 
 struct RenderOverrides {
@@ -129,6 +139,7 @@ struct RenderOverrides {
     // "maxdepth" and none of its other parameters.
     std::optional<std::string> integrator;
     double timeLimitSeconds = 0;             // 0: none
+    std::string guidingSave, guidingLoad;    // guidedpath's tree: written after training, or read
 };
 
 // "uniform", "cosine", "paper", "truncatedsinphi" or "best"; throws std::invalid_argument otherwise.

@@ -47,6 +47,7 @@ struct RenderStatistics {
     int samplesPerPixel = 0;
     int maxSamplesPerPixel = 0;    // taken by some pixels: more only when cancelled mid-wave
     bool cancelled = false;        // RenderOptions::cancel stopped it before every sample was taken
+    std::string integratorStatistics;  // what the integrator adds, a line each (guiding's tree)
 
     double CameraSamplesPerSecond() const { return cameraSamples / seconds; }
     double RaysPerSecond() const { return (closestRays + shadowRays) / seconds; }

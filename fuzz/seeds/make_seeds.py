@@ -84,6 +84,26 @@ def image_seeds():
     return seeds
 
 
+# fuzz/guidingtree_target.cpp: a tree file after its magic number and bounds
+# (pbrt_ext/integrators/sdtree.cpp's Write): spatial nodes (axis, two children, leaf), then per
+# leaf a directional tree (record count, node count, per node four children and four energies).
+def dtree(weight, nodes):
+    out = struct.pack("<dI", weight, len(nodes))
+    for children, sums in nodes:
+        out += struct.pack("<4I4d", *children, *sums)
+    return out
+
+
+def guidingtree_seeds():
+    one_leaf = struct.pack("<I4i", 1, 0, 0, 0, 0) + struct.pack("<I", 1)
+    two_leaves = struct.pack("<I", 3) + struct.pack("<4i", 0, 1, 2, -1) + \
+        struct.pack("<4i", 1, 0, 0, 0) + struct.pack("<4i", 1, 0, 0, 1) + struct.pack("<I", 2)
+    uniform = dtree(0, [((0, 0, 0, 0), (0, 0, 0, 0))])
+    deep = dtree(100, [((1, 0, 0, 0), (3, 1, 0, 0.5)), ((0, 0, 2, 0), (1, 0, 2, 0)),
+                       ((0, 0, 0, 0), (0.25, 0.5, 1, 0.25))])
+    return {"uniform": one_leaf + uniform, "deep": one_leaf + deep, "two_leaves": two_leaves + deep + uniform}
+
+
 def write(target, seeds):
     folder = HERE / target
     folder.mkdir(exist_ok=True)
@@ -94,5 +114,7 @@ def write(target, seeds):
     print(f"{folder}: {len(seeds)} seeds")
 
 
-write("fabric", fabric_seeds())
-write("image", image_seeds())
+if __name__ == "__main__":
+    write("fabric", fabric_seeds())
+    write("image", image_seeds())
+    write("guidingtree", guidingtree_seeds())

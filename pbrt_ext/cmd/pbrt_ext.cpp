@@ -112,12 +112,18 @@ int ParseCommandLine(int argc, char **argv, CommandLine *cmd) {
         ->check([](const std::string &name) { return SamplerNameError(name).value_or(""); });
     app.add_option("--integrator", o.integrator,
                    "path, volpath, bdpt, lightpath, sppm, mlt, simplepath, simplevolpath, "
-                   "randomwalk, ambientocclusion or function: the integrator, with the scene's "
+                   "randomwalk, ambientocclusion, function or guidedpath: the integrator, with the scene's "
                    "maxdepth and the others' defaults (default: the scene's Integrator)")
         ->check([](const std::string &name) { return IntegratorNameError(name).value_or(""); });
     app.add_option("--time-limit", o.timeLimitSeconds,
                    "stop after this many seconds with every pixel at the same sample count "
                    "(default: 0, no limit)");
+    app.add_option("--guiding-save", o.guidingSave,
+                   "guidedpath: write the trained SD-tree to this file (default: none)");
+    app.add_option("--guiding-load", o.guidingLoad,
+                   "guidedpath: render with the SD-tree of this file instead of training one, so that "
+                   "sample slices (--samples) merge exactly (default: train)")
+        ->check(CLI::ExistingFile);
     try {
         app.parse(argc, argv);
         if (spp != 0) {

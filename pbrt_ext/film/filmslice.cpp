@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 
@@ -37,13 +39,25 @@ std::string FilmIdentity(const RGBFilm &film) {
                        MatrixString(film.OutputRGBFromSensorRGB()));
 }
 
+// The guiding tree a guided render reads (its file's hash): slices with another tree differ.
+std::string GuidingIdentity(const IntegratorOptions &i) {
+    if (i.type != IntegratorType::GuidedPath || i.guiding.loadFile.empty())
+        return "";
+    std::ifstream in(i.guiding.loadFile, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return fmt::format(" guiding-tree {:016x} bsdf-fraction {:.9g}",
+                       MurmurHash64A(reinterpret_cast<const unsigned char *>(bytes.data()), bytes.size(), 0),
+                       i.guiding.bsdfFraction);
+}
+
 std::string IntegratorIdentity(const IntegratorOptions &i, const RenderOverrides &o) {
     return fmt::format("type {} maxdepth {} strategy {} regularize {} spectralmis {} fabric-sampler {} "
                        "light-sampler {} layered-estimator {} displacement-edge-scale {:.9g}",
                        int(i.type), i.maxDepth, ToString(i.strategy), i.regularize, i.spectralMIS,
                        o.fabricSampler ? kFabricSamplingNames[int(*o.fabricSampler)] : "scene's",
                        o.lightSampler.value_or("scene's"), LayeredEstimatorName(o.layeredExitMIS),
-                       o.displacementEdgeScale);
+                       o.displacementEdgeScale) +
+           GuidingIdentity(i);
 }
 
 size_t PixelCount(const Bounds2i &b) { return size_t(b.Area()); }

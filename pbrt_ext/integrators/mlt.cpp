@@ -30,12 +30,8 @@ constexpr int64_t kMutationsBetweenChecks = 256;
 // they splat into the film's sums, in the order the threads happen to run.
 constexpr size_t kMaxOwnSplatBytes = size_t(1) << 30;
 
-// pbrt-v4's c(L): the luminance of a path's estimate, which the chains sample in proportion to.
-Float Luminance(const SampledSpectrum &L, const SampledWavelengths &lambda) {
-    return SafeDiv(Spectra::Y().Sample(lambda) * L, lambda.PDF()).Average() / CIE_Y_integral;
-}
-
-// A path's estimate, where it lands on the film, and its wavelengths.
+// A path's estimate, where it lands on the film, and its wavelengths. Chains sample paths in
+// proportion to the estimate's Luminance (pbrt-v4's c(L)).
 struct PathSample {
     SampledSpectrum L;
     Point2f pRaster;

@@ -413,6 +413,13 @@ void ReadParameters(const ParameterDictionary &p, const RenderOverrides &overrid
         options.initialRadius = GetInRange<Float>(p, options.type, "radius", 1, kTiny, Infinity, "positive");
         options.photonSeed = p.GetOneInt("seed", overrides.seed);
         break;
+    case IntegratorType::GuidedPath:
+        options.guiding.bsdfFraction = GetInRange<Float>(p, options.type, "bsdffraction", 0.5f, 0, 1, "in [0, 1]");
+        options.guiding.maxBytes = size_t(GetInRange(p, options.type, "guidingmemory", 256, 1, 1 << 20,
+                                                     "at least 1 (MB)")) << 20;
+        options.guiding.saveFile = overrides.guidingSave;
+        options.guiding.loadFile = overrides.guidingLoad;
+        break;
     case IntegratorType::Path:
     case IntegratorType::VolPath:
     case IntegratorType::LightPath:
@@ -450,6 +457,10 @@ IntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrides &
     ReadParameters(overridden ? kNone : p, overrides, options, lightSampler);
     if (!overridden)
         p.ReportUnused();
+    if (options.type != IntegratorType::GuidedPath && !(overrides.guidingSave + overrides.guidingLoad).empty())
+        throw std::invalid_argument(std::string(overrides.guidingLoad.empty() ? "--guiding-save" : "--guiding-load") +
+                                    ": the integrator is " + IntegratorName(options.type) +
+                                    ", which learns no guiding tree (--integrator guidedpath does)");
     return options;
 }
 

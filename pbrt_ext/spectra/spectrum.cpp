@@ -208,6 +208,10 @@ XYZ SpectrumToXYZ(const Spectrum &s) {
                InnerProduct(Spectrum(m.z), s)) / CIE_Y_integral;
 }
 
+Float Luminance(const SampledSpectrum &L, const SampledWavelengths &lambda) {
+    return SafeDiv(Spectra::Y().Sample(lambda) * L, lambda.PDF()).Average() / CIE_Y_integral;
+}
+
 Float SpectrumToPhotometric(const Spectrum &s) {
     if (const RGBIlluminantSpectrum *rgb = s.Get<RGBIlluminantSpectrum>()) {
         const DenselySampledSpectrum &illum = *rgb->illuminant;

@@ -203,6 +203,10 @@ Spectrum D(Float T);
 Float InnerProduct(const Spectrum &f, const Spectrum &g);
 // XYZ of an emission spectrum, scaled so that luminance 1 gives Y = 1.
 XYZ SpectrumToXYZ(const Spectrum &s);
+// The luminance of radiance sampled at the wavelengths lambda (pbrt-v4's SampledSpectrum::y):
+// each sample weighted by Y over its density, averaged, over CIE_Y_integral.
+Float Luminance(const SampledSpectrum &L, const SampledWavelengths &lambda);
+
 // pbrt-v4's SpectrumToPhotometric: the inner product with Y of the spectrum, or of its
 // illuminant for an RGBIlluminantSpectrum (the RGB only colours the light).
 Float SpectrumToPhotometric(const Spectrum &s);

@@ -458,7 +458,7 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
         // Integrators: pbrt-v4's eleven names, and parameters out of range.
         {"load_integrator_unknown.pbrt",
          ":1:1: error: unknown Integrator \"whitted\": expected path, volpath, bdpt, lightpath, sppm, "
-         "mlt, simplepath, simplevolpath, randomwalk, ambientocclusion or function"},
+         "mlt, simplepath, simplevolpath, randomwalk, ambientocclusion, function or guidedpath"},
         {"load_ao_maxdistance.pbrt", ":1:31: error: ambientocclusion \"maxdistance\" must be positive"},
         {"load_maxdepth_negative.pbrt", ":1:19: error: path \"maxdepth\" must be at least 0"},
         {"load_function_unknown.pbrt",

@@ -1,0 +1,33 @@
+// Rendering by camera samples (pbrt-v4's ImageTileIntegrator::Render): tiles over all cores (TBB)
+// in waves of samples, a progress bar, the time limit and cancellation of RenderOptions, and the
+// statistics. Every integrator that estimates each camera sample by itself renders this way;
+// sppm, mlt and function have their own loops, and guidedpath calls this once per iteration.
+#pragma once
+
+#include "pbrt_ext/integrators/ambientocclusion.h"
+#include "pbrt_ext/integrators/bdpt.h"
+#include "pbrt_ext/integrators/guidedpath.h"
+#include "pbrt_ext/integrators/lightpath.h"
+#include "pbrt_ext/integrators/path.h"
+#include "pbrt_ext/integrators/randomwalk.h"
+#include "pbrt_ext/integrators/simplepath.h"
+#include "pbrt_ext/integrators/simplevolpath.h"
+#include "pbrt_ext/integrators/volpath.h"
+#include "pbrt_ext/render.h"
+
+#include <variant>
+
+namespace pbrt {
+
+class Scene;
+
+using TileIntegrator = std::variant<PathIntegrator, VolPathIntegrator, BDPTIntegrator, LightPathIntegrator,
+                                    SimplePathIntegrator, SimpleVolPathIntegrator, RandomWalkIntegrator,
+                                    AOIntegrator, GuidedPathIntegrator>;
+
+// Renders sample indices [samples.first, samples.last) of every pixel into the scene's film, in
+// waves (render.h's Render says how), with a progress bar titled title.
+RenderStatistics RenderTiles(Scene &scene, const TileIntegrator &integrator, SampleRange samples,
+                             const RenderOptions &options, const char *title);
+
+}  // namespace pbrt

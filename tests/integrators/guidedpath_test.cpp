@@ -1,0 +1,216 @@
+// Guided path tracing: unbiased, so its image of the Cornell box and of a white furnace has the
+// path tracer's (resp. the environment's) mean within 4 standard errors per channel
+// (tests/support/imagestats.h); the mixture of BSDF and learned sampling follows the density the
+// integrator weighs by (chi-square, alpha 0.01) and reports it exactly for a non-layered BSDF;
+// Russian roulette is guided but never certain death; training learns a tree; a saved tree loaded again renders the same image every time and in
+// sample slices that merge exactly; and a range without a tree, or a bad tree file, is refused.
+#include "pbrt_ext/integrators/guidedpath.h"
+
+#include "tests/support/chi2.h"
+#include "tests/support/imagestats.h"
+#include "tests/support/scenefolder.h"
+#include "tests/support/scenes.h"
+
+#include "pbrt_ext/film/filmslice.h"
+#include "pbrt_ext/render.h"
+#include "pbrt_ext/scene.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+namespace pbrt {
+
+struct GuidedPathTestAccess {
+    static pstd::optional<Vector3f> Sample(const GuidedPathIntegrator &g, const BSDF &bsdf, const DTree *guide,
+                                           Vector3f wo, Sampler &sampler, Float *pdf, SampledSpectrum *weight) {
+        auto s = g.SampleScatter(bsdf, guide, wo, sampler);
+        if (!s)
+            return {};
+        *pdf = s->pdf;
+        *weight = s->weight;
+        return s->wi;
+    }
+    static Float Survival(Float throughput, Float learned, Float pixel) {
+        return GuidedPathIntegrator::SurvivalProbability(throughput, learned, pixel);
+    }
+    static Float PDF(const GuidedPathIntegrator &g, const BSDF &bsdf, const DTree *guide, Vector3f wo, Vector3f wi) {
+        return g.ScatterPDF(bsdf, guide, wo, wi);
+    }
+};
+
+namespace {
+
+using namespace testscenes;
+
+IntegratorOptions Guided(int maxDepth = 5) {
+    IntegratorOptions o = PathTracer(maxDepth);
+    o.type = IntegratorType::GuidedPath;
+    return o;
+}
+
+void ExpectSameMeans(const RGBFilm &film, const RGBFilm &reference) {
+    ChannelDifference d = MeanDifference(film, reference);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_LT(d.Z(c), 4) << "channel " << c << ": mean difference " << d.mean[c] << " +- " << d.standardError[c];
+}
+
+TEST(GuidedPath, CornellBoxMeanIsThePathTracers) {
+    auto reference = CornellBox(Point2i(32, 32), 1024, PathTracer(5));
+    Render(*reference, {0, true});
+    auto guided = CornellBox(Point2i(32, 32), 256, Guided());
+    RenderStatistics stats = Render(*guided, {0, true});
+    EXPECT_THAT(stats.integratorStatistics, testing::HasSubstr("guiding: 7 training iterations, 127 samples"));
+    ExpectSameMeans(guided->film, reference->film);
+}
+
+// Russian roulette keeps a path headed where the tree learned much light, rolls the others by
+// their expected share of the pixel, and never kills one outright (the estimator stays unbiased);
+// without an estimate it is pbrt-v4's.
+TEST(GuidedPath, RouletteFollowsTheLearnedRadiance) {
+    using A = GuidedPathTestAccess;
+    EXPECT_EQ(A::Survival(0.5f, 0, 1), 0.5f);     // nothing learned along the direction
+    EXPECT_EQ(A::Survival(0.5f, 1, 0), 0.5f);     // nothing learned at the first vertex
+    EXPECT_EQ(A::Survival(0.5f, 100, 1), 1.f);    // toward a bright opening
+    EXPECT_NEAR(A::Survival(0.5f, 0.1f, 1), 0.5f, 1e-6f);  // a tenth of the pixel's share
+    EXPECT_NEAR(A::Survival(0.5f, 1e-6f, 1), 0.05f, 1e-6f);  // the floor: a tenth of pbrt-v4's
+}
+
+// A white diffuse sphere in a uniform environment reflects it all: every pixel is the
+// environment's.
+std::unique_ptr<Scene> Furnace(IntegratorOptions options, bool sphere) {
+    const Point2i res(24, 24);
+    SceneBuilder builder(LookingAt(Point3f(0, 0, 4), Point3f(0, 0, 0), 30, res), BoxFilteredFilm(res),
+                         ZSobolSampler(64, res));
+    if (sphere)
+        builder.AddSphere(UnitSphereAt(Point3f(0, 0, 0)), builder.AddMaterial(DiffuseMaterial{Spectrum(1.f)}));
+    builder.AddLight(UniformInfiniteLight(Spectrum(1.f), 1));
+    builder.SetIntegrator(options);
+    auto scene = builder.Build();
+    Render(*scene, {0, true});
+    return scene;
+}
+
+TEST(GuidedPath, WhiteFurnaceReturnsTheEnvironment) {
+    auto furnace = Furnace(Guided(100), true), empty = Furnace(Guided(100), false);
+    RGB got = MeanRGB(furnace->film), expected = MeanRGB(empty->film);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(got[c], expected[c], 4 * StandardErrorOfMean(furnace->film, c) + 1e-4f) << "channel " << c;
+}
+
+TEST(GuidedPath, TheMixtureFollowsTheDensityItReports) {
+    auto scene = CornellBox(Point2i(8, 8), 64, Guided());
+    RenderOptions options{0, true};
+    options.samples = std::nullopt;
+    Render(*scene, options);  // trains; the tree's use is checked on a tree learned from it
+    SDTree tree(scene->aggregate.WorldBound());
+    GuidedPathIntegrator learner(*scene, scene->integratorOptions, tree, true);
+    Sampler sampler = IndependentSampler(1, 3);
+    RayCounts rays;
+    for (int i = 0; i < 4000; ++i) {
+        sampler.StartPixelSample(Point2i(i % 8, i / 8 % 8), i);
+        SampledWavelengths lambda = SampledWavelengths::SampleVisible(sampler.Get1D());
+        Float dx = sampler.Get1D() - 0.5f, dy = sampler.Get1D() - 0.5f;
+        RayDifferential ray(Ray(Point3f(2.78f, 2.73f, -8), Normalize(Vector3f(dx, dy, 2))));
+        learner.Li(ray, lambda, sampler, rays);
+    }
+    tree.Refine(0);
+    const DTree &guide = tree.SamplingTree(Point3f(2.75f, 0.01f, 2.75f));
+    ASSERT_GT(guide.Energy(), 0);
+    // A diffuse floor's BSDF at the middle of the floor, seen from above.
+    BSDF bsdf(Normal3f(0, 1, 0), Vector3f(1, 0, 0), DiffuseBxDF(SampledSpectrum(0.5f)));
+    Vector3f wo = Normalize(Vector3f(0.2f, 1, -0.3f));
+    GuidedPathIntegrator guided(*scene, scene->integratorOptions, tree, false);
+    Chi2Options opts;
+    auto sample = [&](Point2f u, Float uc) -> pstd::optional<Vector3f> {
+        Sampler s = IndependentSampler(1, 0);
+        s.StartPixelSample(Point2i(int(u.x * 1e6f), int(u.y * 1e6f)), int(uc * 1e6f));
+        Float pdf;
+        SampledSpectrum weight;
+        pstd::optional<Vector3f> wi = GuidedPathTestAccess::Sample(guided, bsdf, &guide, wo, s, &pdf, &weight);
+        if (wi) {
+            // For a non-layered BSDF the reported density is the mixture's, to rounding.
+            EXPECT_NEAR(pdf, GuidedPathTestAccess::PDF(guided, bsdf, &guide, wo, *wi), 1e-4f * pdf);
+        }
+        return wi;
+    };
+    // A guided direction where the BSDF is 0 (below the floor) ends the path: no sample. The
+    // directions sampled are those of the mixture where f is not 0.
+    auto pdf = [&](Vector3f wi) {
+        return bsdf.f(wo, wi) ? GuidedPathTestAccess::PDF(guided, bsdf, &guide, wo, wi) : Float(0);
+    };
+    opts.sampleCount = 200000;
+    Chi2Result r = Chi2TestSampler(sample, pdf, opts);
+    EXPECT_TRUE(r.passed) << r.message;
+}
+
+// The Cornell box of tests/support/scenes.h as a scene file, with the integrator's options.
+std::string CornellFile() {
+    std::filesystem::path dir = TestFolder("pbrt_ext_guidedpath_test");
+    std::ofstream(dir / "box.pbrt")
+        << "LookAt 2.78 2.73 -8  2.78 2.73 0  0 1 0\nCamera \"perspective\" \"float fov\" 39.3\n"
+        << "Film \"rgb\" \"integer xresolution\" 16 \"integer yresolution\" 16\n"
+        << "Sampler \"zsobol\" \"integer pixelsamples\" 32\nIntegrator \"guidedpath\"\nWorldBegin\n"
+        << "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [17 12 4]\n"
+        << "Shape \"bilinearmesh\" \"point3 P\" [2.13 5.49 2.27  3.43 5.49 2.27  2.13 5.49 3.32  3.43 5.49 3.32]\n"
+        << "AttributeEnd\nMaterial \"diffuse\"\n"
+        << "Shape \"bilinearmesh\" \"point3 P\" [0 0 0  5.5 0 0  0 0 5.5  5.5 0 5.5]\n"
+        << "Shape \"bilinearmesh\" \"point3 P\" [0 5.5 0  5.5 5.5 0  0 5.5 5.5  5.5 5.5 5.5]\n"
+        << "Shape \"bilinearmesh\" \"point3 P\" [0 0 5.5  5.5 0 5.5  0 5.5 5.5  5.5 5.5 5.5]\n";
+    return (dir / "box.pbrt").string();
+}
+
+TEST(GuidedPath, ALoadedTreeRendersTheSameImageInSlicesThatMerge) {
+    const std::string scene = CornellFile();
+    const std::string tree = (TestFolder("pbrt_ext_guidedpath_test") / "box.sdt").string();
+    RenderOverrides save;
+    save.guidingSave = tree;
+    save.quiet = true;
+    Render(*LoadScene(scene, save), {0, true});
+    RenderOverrides load;
+    load.guidingLoad = tree;
+    load.quiet = true;
+    auto a = LoadScene(scene, load), b = LoadScene(scene, load);
+    Render(*a, {0, true});
+    Render(*b, {0, true});
+    for (Point2i p : a->film.PixelBounds())
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(a->film.GetPixelRGB(p)[c], b->film.GetPixelRGB(p)[c]);
+    std::vector<FilmSlice> slices;
+    for (SampleRange range : {SampleRange{0, 13}, SampleRange{13, 32}}) {
+        auto part = LoadScene(scene, load);
+        RenderOptions options{0, true};
+        options.samples = range;
+        RenderStatistics stats = Render(*part, options);
+        slices.push_back(FilmSlice::FromFilm(part->film, range, stats.seconds, {}, "box"));
+    }
+    Image merged = MergeFilmSlices(slices, {"first", "second"}).GetImage(), whole = a->film.GetImage();
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x)
+            for (int c = 0; c < 3; ++c)
+                ASSERT_NEAR(merged.GetChannel({x, y}, c), whole.GetChannel({x, y}, c),
+                            1e-5f * std::max(1.f, whole.GetChannel({x, y}, c)));
+}
+
+TEST(GuidedPath, RefusesARangeWithoutATreeAndABadTreeFile) {
+    const std::string scene = CornellFile();
+    RenderOverrides quiet;
+    quiet.quiet = true;
+    RenderOptions range{0, true};
+    range.samples = SampleRange{0, 4};
+    EXPECT_THAT([&] { Render(*LoadScene(scene, quiet), range); },
+                testing::ThrowsMessage<std::invalid_argument>(testing::HasSubstr("--guiding-load")));
+    const std::string bad = (TestFolder("pbrt_ext_guidedpath_test") / "bad.sdt").string();
+    std::ofstream(bad) << "garbage";
+    RenderOverrides load = quiet;
+    load.guidingLoad = bad;
+    EXPECT_THAT([&] { Render(*LoadScene(scene, load), {0, true}); },
+                testing::ThrowsMessage<std::runtime_error>(testing::HasSubstr("bad.sdt: error: not a guiding tree")));
+    RenderOverrides notGuided = load;
+    notGuided.integrator = "path";
+    EXPECT_THAT([&] { LoadScene(scene, notGuided); },
+                testing::ThrowsMessage<std::invalid_argument>(testing::HasSubstr("--guiding-load: the integrator is path")));
+}
+
+}  // namespace
+}  // namespace pbrt
