@@ -58,8 +58,10 @@ void FuzzGuidingTree(std::span<const uint8_t> data) {
     ExpectReadOrRejection("guidingtree", [&] {
         SDTree tree = SDTree::Read(path, kUnitCube);
         RNG rng(2);
-        for (int i = 0; i < 8; ++i)
-            CheckDirections(tree.SamplingTree(Point3f(rng.Uniform<Float>(), rng.Uniform<Float>(), rng.Uniform<Float>())));
+        for (int i = 0; i < 8; ++i) {
+            Point3f p(rng.Uniform<Float>(), rng.Uniform<Float>(), rng.Uniform<Float>());
+            CheckDirections(tree.SamplingTree(p));
+        }
     });
 }
 

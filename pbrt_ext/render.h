@@ -29,6 +29,7 @@ struct RenderOptions {
     // signal handler included; the library never installs one (cmd/interrupt.h does, for the
     // command line). nullptr: never cancelled.
     const std::atomic<bool> *cancel = nullptr;
+    bool Cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
     // Only these sample indices of the scene's sampler (which keeps its samples per pixel, so
     // that each index gives the sample it gives in a full render); unset: all of them. A render
     // of a range is a slice that merges exactly with the others (filmslice.h). Must lie within

@@ -183,7 +183,7 @@ std::vector<std::pair<int, double>> FunctionErrorTable(const Scene &scene, const
             table.emplace_back(n, squaredErrors / double(nPixels));
         }
         progress.Update();
-        if (options.cancel && options.cancel->load(std::memory_order_relaxed))
+        if (options.Cancelled())
             break;
     }
     progress.Done();

@@ -205,12 +205,14 @@ SampledSpectrum GuidedPathIntegrator::Li(RayDifferential ray, SampledWavelengths
         ray = si.SpawnRay(ray, scatter->wi, scatter->sample.flags, scatter->sample.eta);
         // Russian roulette by what the path is expected to bring (see SurvivalProbability).
         if (depth == 0)
-            pixelEstimate = 2 * learned.MeanRadiance();
+            pixelEstimate = 2 * learned.MeanRadiance();  // over the hemisphere: twice the sphere's mean
         // As in the path tracer, from the third vertex on, and only while the throughput is under 1.
         Float throughput = (beta * etaScale).MaxComponentValue();
         if (throughput < 1 && depth > 1) {
+            // DTree::Radiance of the direction, from the density already known where guided.
             Float pdfLearned = guide ? scatter->pdfGuide : GuidePDF(learned, scatter->wi);
-            Float survival = SurvivalProbability(throughput, 4 * Pi * pdfLearned * learned.MeanRadiance(), pixelEstimate);
+            Float radiance = 4 * Pi * pdfLearned * learned.MeanRadiance();
+            Float survival = SurvivalProbability(throughput, radiance, pixelEstimate);
             if (sampler.Get1D() >= survival)
                 break;
             beta /= survival;

@@ -3,7 +3,6 @@
 #include "pbrt_ext/integrators/imagetile.h"
 #include "pbrt_ext/integrators/sdtree.h"
 #include "pbrt_ext/scene.h"
-#include "pbrt_ext/util/progressreporter.h"
 
 #include <fmt/format.h>
 
@@ -17,10 +16,6 @@ SDTreeOptions TreeOptions(const GuidingOptions &guiding) {
     SDTreeOptions options;
     options.maxBytes = guiding.maxBytes;
     return options;
-}
-
-bool Stopped(const RenderOptions &options) {
-    return options.cancel && options.cancel->load(std::memory_order_relaxed);
 }
 
 struct Training {
@@ -51,7 +46,7 @@ Training Train(Scene &scene, SDTree &tree, SampleRange samples, const RenderOpti
     double lastSeconds = 0;
     for (int k = 0;; ++k) {
         const int n = 1 << k;
-        if (2 * (training.samples + n) > samples.Count() || Stopped(options))
+        if (2 * (training.samples + n) > samples.Count() || options.Cancelled())
             break;
         // Under a time limit: only while the next iteration (twice the last) fits in half of it.
         if (options.timeLimitSeconds > 0 && elapsed() + 2 * lastSeconds > options.timeLimitSeconds / 2)
@@ -75,7 +70,8 @@ std::string TreeStatistics(const SDTree &tree, const Training &training) {
     return fmt::format("guiding: {} training iterations, {} samples per pixel, {:.3f} s\n"
                        "guiding tree: {} spatial nodes, {} leaves, {} directional nodes (depth up to {}), "
                        "{:.1f} MB\n",
-                       training.iterations, training.samples, training.seconds, s.spatialNodes, s.leaves, s.directionalNodes, s.maxDirectionalDepth, double(s.bytes) / (1 << 20));
+                       training.iterations, training.samples, training.seconds, s.spatialNodes, s.leaves,
+                       s.directionalNodes, s.maxDirectionalDepth, double(s.bytes) / (1 << 20));
 }
 
 }  // namespace

@@ -44,10 +44,6 @@ struct ThreadCounts {
     int64_t discarded = 0;
 };
 
-bool Cancelled(const RenderOptions &options) {
-    return options.cancel && options.cancel->load(std::memory_order_relaxed);
-}
-
 // After the first wave, kMaxWaveSize: a pixel's samples drawn one after another share the
 // sampler's per-pixel work (zsobol's pixel digits, Halton's first index), which a new wave
 // redoes (8 spp in waves of 1, 2, 4 and 1 took 4.7 % more instructions on the Cornell box than
@@ -115,7 +111,7 @@ RenderStatistics RenderTiles(Scene &scene, const TileIntegrator &integrator, Sam
         // The first wave ignores cancellation, so that every pixel has a sample.
         const bool cancellable = waveStart > samples.first;
         tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
-            if (cancellable && Cancelled(options))
+            if (cancellable && options.Cancelled())
                 return;
             std::visit([&](const auto &concrete) {
                 RenderTile(scene, concrete, tiles[t], waveStart, waveEnd, counts.local());
@@ -126,7 +122,7 @@ RenderStatistics RenderTiles(Scene &scene, const TileIntegrator &integrator, Sam
         waveStart = waveEnd;
         const double elapsed = progress.ElapsedSeconds();
         const bool timeUp = options.timeLimitSeconds > 0 && elapsed >= options.timeLimitSeconds;
-        if (Cancelled(options) || timeUp)
+        if (options.Cancelled() || timeUp)
             break;
         waveSize = NextWaveSize(waveSize, waveStart - samples.first, elapsed, options.timeLimitSeconds);
     }
@@ -137,7 +133,7 @@ RenderStatistics RenderTiles(Scene &scene, const TileIntegrator &integrator, Sam
     const auto [fewest, most] = std::minmax_element(tileSamples.begin(), tileSamples.end());
     stats.samplesPerPixel = *fewest - samples.first;
     stats.maxSamplesPerPixel = *most - samples.first;
-    stats.cancelled = stats.samplesPerPixel < samples.Count() && Cancelled(options);
+    stats.cancelled = stats.samplesPerPixel < samples.Count() && options.Cancelled();
     for (size_t t = 0; t < tiles.size(); ++t)
         stats.cameraSamples += int64_t(tiles[t].Area()) * (tileSamples[t] - samples.first);
     // Splats came from one light path per camera sample, spread over the pixels.

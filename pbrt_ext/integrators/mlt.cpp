@@ -88,8 +88,7 @@ class MLT {
             scene.film.AddSplat(path.pRaster, path.L * weight, path.lambda);
     }
     bool ShouldStop(const ProgressReporter &progress) const {
-        bool cancelled = renderOptions.cancel && renderOptions.cancel->load(std::memory_order_relaxed);
-        return cancelled || (renderOptions.timeLimitSeconds > 0 &&
+        return renderOptions.Cancelled() || (renderOptions.timeLimitSeconds > 0 &&
                              progress.ElapsedSeconds() >= renderOptions.timeLimitSeconds);
     }
 
@@ -263,8 +262,7 @@ RenderStatistics MLT::Render() {
     stats.seconds = progress.ElapsedSeconds();
     stats.cameraSamples = bootstrapPaths + mutations + options.chains;
     stats.samplesPerPixel = stats.maxSamplesPerPixel = int(mutations / std::max<int64_t>(1, sampleArea));
-    stats.cancelled = mutations < totalMutations && renderOptions.cancel &&
-                      renderOptions.cancel->load(std::memory_order_relaxed);
+    stats.cancelled = mutations < totalMutations && renderOptions.Cancelled();
     // pbrt-v4's b / mutationsPerPixel, with the mutations made.
     scene.film.SetSplatScale(Float(bootstrap.b * double(sampleArea) / double(std::max<int64_t>(1, mutations))));
     for (const RayCounts &r : rayCounts) {

@@ -401,7 +401,7 @@ RenderStatistics SPPM::Render() {
         progress.Update();
         UpdatePixels();
         done = iteration + 1;
-        bool cancelled = renderOptions.cancel && renderOptions.cancel->load(std::memory_order_relaxed);
+        bool cancelled = renderOptions.Cancelled();
         bool timeUp = renderOptions.timeLimitSeconds > 0 &&
                       progress.ElapsedSeconds() >= renderOptions.timeLimitSeconds;
         if (cancelled || timeUp)
@@ -420,8 +420,7 @@ RenderStatistics SPPM::Render() {
     stats.seconds = progress.ElapsedSeconds();
     stats.cameraSamples = int64_t(done) * pixelBounds.Area();
     stats.samplesPerPixel = stats.maxSamplesPerPixel = done;
-    stats.cancelled = done < iterations && renderOptions.cancel &&
-                      renderOptions.cancel->load(std::memory_order_relaxed);
+    stats.cancelled = done < iterations && renderOptions.Cancelled();
     for (const RayCounts &r : rayCounts) {
         stats.closestRays += r.closest;
         stats.shadowRays += r.shadow;
