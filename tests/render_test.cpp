@@ -1,5 +1,6 @@
 // End to end: analytic scenes through every integrator strategy, the strategies against each other,
 // thread-count invariance, and no NaN anywhere.
+#include "tests/support/imagestats.h"
 #include "tests/support/scenes.h"
 
 #include "pbrt_ext/bxdfs/albedo.h"
@@ -62,15 +63,8 @@ void ExpectNear(Estimate e, double expected, const std::string &what) {
 // For images whose pixels are independent estimates of one value (an emitter or a plane filling
 // the view): the noise is then the wavelength sampling's, the film's spectral-to-RGB estimate.
 Estimate ImageMean(const RGBFilm &film, int c) {
-    double sum = 0, sum2 = 0, n = 0;
-    for (Point2i p : film.PixelBounds()) {
-        double v = film.GetPixelRGB(p)[c];
-        sum += v;
-        sum2 += v * v;
-        ++n;
-    }
-    double mean = sum / n, variance = std::max(0.0, sum2 / n - mean * mean);
-    return {mean, std::sqrt(variance / (n - 1))};
+    ChannelStatistics s = ImageStatistics(film);
+    return {s.mean[c], s.standardError[c]};
 }
 
 // A sphere of material m alone in a uniform white environment.
