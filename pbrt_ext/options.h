@@ -140,6 +140,13 @@ struct RenderOverrides {
     std::optional<std::string> integrator;
     double timeLimitSeconds = 0;             // 0: none
     std::string guidingSave, guidingLoad;    // guidedpath's tree: written after training, or read
+    // pbrt-v4's debugging switches, which a scene's Option directive can also set (and then wins):
+    bool quick = false;                    // resolution / 4, 1 spp (mlt: mutations and bootstrap / 16)
+    bool forceDiffuse = false;             // every BSDF: a diffuse one with its reflectance
+    bool disablePixelJitter = false;       // pixel and lens centres, mid-shutter
+    bool disableWavelengthJitter = false;  // the same wavelengths for every sample
+    bool disableTextureFiltering = false;  // point-sampled textures (no ray differentials)
+    bool disableImageTextures = false;     // each image texture: its average
 };
 
 // "uniform", "cosine", "paper", "truncatedsinphi" or "best"; throws std::invalid_argument otherwise.

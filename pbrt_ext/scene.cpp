@@ -9,7 +9,7 @@ namespace pbrt {
 
 SceneBuilder::SceneBuilder(Camera camera, RGBFilm film, Sampler sampler)
     : scene(new Scene{EmbreeAggregate(), {}, {}, {}, {}, LightSampler(UniformLightSampler({})),
-                      std::move(camera), {}, false, false, std::move(film), std::move(sampler),
+                      std::move(camera), {}, false, false, {}, std::move(film), std::move(sampler),
                       {}, {}, -1}) {}
 
 int SceneBuilder::AddMaterial(Material material) {
@@ -226,11 +226,25 @@ std::optional<VisibleSurface> Scene::FirstVisibleSurface(RayDifferential ray,
     }
 }
 
+BSDF DiffuseEquivalent(const BSDF &bsdf, const SurfaceInteraction &si) {
+    constexpr int n = 4;
+    std::array<Float, n * n> uc;
+    std::array<Point2f, n * n> u2;
+    for (int i = 0; i < n * n; ++i) {
+        uc[i] = (i + 0.5f) / (n * n);
+        u2[i] = Point2f((i % n + 0.5f) / n, (i / n + 0.5f) / n);
+    }
+    SampledSpectrum r = Clamp(bsdf.rho(si.wo, uc, u2), 0.f, 1.f);
+    return BSDF(si.shading.n, si.shading.dpdu, DiffuseBxDF(r));
+}
+
 std::unique_ptr<Scene> SceneBuilder::Build() {
     scene->aggregate.Commit();
     scene->hasMotion = scene->camera.IsMoving() || scene->aggregate.HasMotion();
+    // Without texture filtering, only bump maps read differentials (and step by pbrt-v4's
+    // fallback); no material asks for them.
     for (const Material &m : scene->materials)
-        scene->usesRayDifferentials |= m.UsesRayDifferentials();
+        scene->usesRayDifferentials |= m.UsesRayDifferentials() && scene->switches.textureFiltering;
     scene->usesRayDifferentials |= scene->film.GBuffer() != nullptr;  // its dzdx and dzdy
     if (scene->usesRayDifferentials)
         scene->cameraDifferentials =

@@ -48,6 +48,19 @@ class LightSampler {
     Variant sampler;
 };
 
+// pbrt-v4's debugging switches (--force-diffuse, --disable-pixel-jitter,
+// --disable-wavelength-jitter, --disable-texture-filtering, or the scene's Option directives).
+struct RenderSwitches {
+    bool forceDiffuse = false;      // every BSDF replaced by DiffuseEquivalent
+    bool pixelJitter = true;        // false: pixel and lens centres, mid-shutter, filter weight 1
+    bool wavelengthJitter = true;   // false: every sample carries the wavelengths of u = 0.5
+    bool textureFiltering = true;   // false: no ray differentials, textures read at a point
+};
+
+// A diffuse BSDF with bsdf's directional albedo toward si.wo (pbrt-v4's --force-diffuse), which
+// is estimated by a fixed 4 x 4 stratified quadrature, so that it needs no sampler dimensions.
+BSDF DiffuseEquivalent(const BSDF &bsdf, const SurfaceInteraction &si);
+
 // Everything a render needs, immutable but for the film that accumulates it.
 class Scene {
   public:
@@ -92,7 +105,8 @@ class Scene {
     std::optional<BSDF> GetBSDF(SurfaceInteraction &si, SampledWavelengths &lambda) const {
         int index = ResolveMaterial(si);
         if (index < 0) return std::nullopt;
-        return materials[index].GetBSDF(si, lambda);
+        BSDF bsdf = materials[index].GetBSDF(si, lambda);
+        return switches.forceDiffuse ? DiffuseEquivalent(bsdf, si) : bsdf;
     }
     // The BSSRDF under a hit's surface, mixes resolved as GetBSDF resolves them; none unless its
     // material is a subsurface one.
@@ -133,6 +147,11 @@ class Scene {
     bool usesRayDifferentials = false;
     // Whether the camera or some instance moves: only then does a camera sample draw a time.
     bool hasMotion = false;
+    RenderSwitches switches;
+    // The wavelengths a camera sample carries, from its first dimension u.
+    SampledWavelengths SampleWavelengths(Float u) const {
+        return film.SampleWavelengths(switches.wavelengthJitter ? u : 0.5f);
+    }
     RGBFilm film;
     Sampler sampler;
     IntegratorOptions integratorOptions;
@@ -210,6 +229,7 @@ class SceneBuilder {
     void SetCameraMedium(int medium);
 
     void SetIntegrator(IntegratorOptions options) { integratorOptions = options; }
+    void SetSwitches(RenderSwitches switches) { scene->switches = switches; }
     // "bvh" (default), "bvh-pbrt-v4" (InfiniteLightChoice::PbrtV4), "power" or "uniform".
     void SetLightSampler(std::string name);
 

@@ -207,9 +207,11 @@ inline Float RayDifferentialScale(int samplesPerPixel) {
 // from the pixel center by a point drawn from the filter, whose weight the film applies; then
 // the time and the lens position, in pbrt-v4's order of sample dimensions. The time takes its
 // dimension only where something moves (`moving`): a still scene draws the samples it drew
-// before motion blur existed, and pays nothing for it.
+// before motion blur existed, and pays nothing for it. Without `jitter` (pbrt-v4's
+// --disable-pixel-jitter) the same dimensions are drawn, and the pixel centre, the lens centre and
+// mid-shutter taken instead, with weight 1.
 inline CameraSample GetCameraSample(Sampler &sampler, Point2i pPixel, const Filter &filter,
-                                    bool moving = false) {
+                                    bool moving = false, bool jitter = true) {
     FilterSample fs = filter.Sample(sampler.GetPixel2D());
     CameraSample cs;
     cs.pFilm = Point2f(pPixel.x + 0.5f + fs.p.x, pPixel.y + 0.5f + fs.p.y);
@@ -217,6 +219,12 @@ inline CameraSample GetCameraSample(Sampler &sampler, Point2i pPixel, const Filt
         cs.time = sampler.Get1D();
     cs.pLens = sampler.Get2D();
     cs.filterWeight = fs.weight;
+    if (!jitter) {
+        cs.pFilm = Point2f(pPixel.x + 0.5f, pPixel.y + 0.5f);
+        cs.time = 0.5f;
+        cs.pLens = Point2f(0.5f, 0.5f);
+        cs.filterWeight = 1;
+    }
     return cs;
 }
 

@@ -70,10 +70,14 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
         for (int i = first; i < last; ++i) {
             sampler.StartPixelSample(p, i);
             // pbrt-v4's order: the wavelengths take the first dimension, then the camera sample.
-            SampledWavelengths lambda = scene.film.SampleWavelengths(sampler.Get1D());
-            CameraSample cs = GetCameraSample(sampler, p, scene.film.GetFilter(), scene.hasMotion);
-            pstd::optional<CameraRayDifferential> cr =
-                scene.GenerateCameraRay(cs, RayDifferentialScale(scene.sampler.SamplesPerPixel()));
+            SampledWavelengths lambda = scene.SampleWavelengths(sampler.Get1D());
+            CameraSample cs = GetCameraSample(sampler, p, scene.film.GetFilter(), scene.hasMotion,
+                                              scene.switches.pixelJitter);
+            // pbrt-v4 narrows the differentials to the samples' spacing only when they jitter.
+            Float differentialScale = scene.switches.pixelJitter
+                                          ? RayDifferentialScale(scene.sampler.SamplesPerPixel())
+                                          : 1;
+            pstd::optional<CameraRayDifferential> cr = scene.GenerateCameraRay(cs, differentialScale);
             SampledSpectrum L(0.f);
             if (cr) {
                 if constexpr (requires { integrator.Li(cr->ray, cs.pFilm, lambda, sampler, counts.rays); })

@@ -121,7 +121,7 @@ PathSample MLT::L(Sampler &sampler, int depth, RayCounts &rays) const {
     int nStrategies = depth == 0 ? 1 : depth + 2;
     int s = depth == 0 ? 0 : std::min(int(sampler.Get1D() * Float(nStrategies)), nStrategies - 1);
     int t = depth + 2 - s;
-    path.lambda = scene.film.SampleWavelengths(sampler.Get1D());
+    path.lambda = scene.SampleWavelengths(sampler.Get1D());
     path.pRaster = sampleBounds.Lerp(sampler.GetPixel2D());
     CameraSample cs;
     cs.pFilm = path.pRaster;

@@ -217,7 +217,8 @@ SampledSpectrum SPPM::WeightedEmission(SampledSpectrum Le, int lightIndex, bool 
 void SPPM::TraceCameraPath(Point2i pPixel, int iteration, SampledWavelengths lambda,
                            Sampler &sampler, RayCounts &rays) {
     sampler.StartPixelSample(pPixel, iteration);
-    CameraSample cs = GetCameraSample(sampler, pPixel, scene.film.GetFilter());
+    CameraSample cs = GetCameraSample(sampler, pPixel, scene.film.GetFilter(), false,
+                                      scene.switches.pixelJitter);
     // pbrt-v4 scales SPPM's differentials by 1/sqrt(iterations), without the 1/8 floor.
     pstd::optional<CameraRayDifferential> cr =
         scene.GenerateCameraRay(cs, 1 / std::sqrt(Float(scene.sampler.SamplesPerPixel())));
@@ -393,7 +394,7 @@ RenderStatistics SPPM::Render() {
     int done = 0;
     for (int iteration = 0; iteration < iterations; ++iteration) {
         // One set of wavelengths per iteration, so that photons and visible points share them.
-        SampledWavelengths lambda = scene.film.SampleWavelengths(RadicalInverse(1, uint64_t(iteration)));
+        SampledWavelengths lambda = scene.SampleWavelengths(RadicalInverse(1, uint64_t(iteration)));
         TraceCameraPaths(iteration, lambda);
         progress.Update();
         VisiblePointGrid grid(pixels);

@@ -16,6 +16,19 @@
 
 namespace pbrt {
 
+// read(): an image or data file read for a parameter. Its error (std::runtime_error, naming the
+// file) is rethrown located at the directive's parameter that named the file.
+template <typename Read>
+auto ReadFileAt(const FileLoc &loc, Read read) {
+    try {
+        return read();
+    } catch (const ParseError &) {
+        throw;  // located already (a memory check at the file)
+    } catch (const std::runtime_error &error) {
+        throw ParseError(loc, error.what());
+    }
+}
+
 // A file named in the scene: relative paths are relative to the main scene file's folder (pbrt-v4).
 inline std::string ResolvePath(const std::string &folder, const std::string &path) {
     std::filesystem::path p(path);
@@ -55,7 +68,8 @@ Spectrum GetSpectrum(const ParameterDictionary &parameters, const std::string &n
 // uses is never loaded.
 class TextureResolver {
   public:
-    TextureResolver(const SceneDescription &scene, std::string folder);
+    // averageImages: every image texture is its image's average (--disable-image-textures).
+    TextureResolver(const SceneDescription &scene, std::string folder, bool averageImages = false);
     ~TextureResolver();
 
     FloatTexture Float(const ParameterDictionary &parameters, const std::string &name,
@@ -77,6 +91,7 @@ class TextureResolver {
     std::string folder;
     std::unique_ptr<Cache> cache;
     bool readsFootprint = false;
+    bool averageImages = false;
 };
 
 // Materials (create_materials.cpp). The material's type is the entity's name, or for a named

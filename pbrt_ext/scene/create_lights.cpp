@@ -76,7 +76,7 @@ Image ReadLightImage(const SceneEntity &e, const std::string &folder) {
     if (!std::filesystem::is_regular_file(path))
         throw ParseError(*p.Loc("filename"), "cannot open image \"" + filename + "\" (looked for " +
                                                  path + ")");
-    Image image = Image::Read(path);
+    Image image = ReadFileAt(*p.Loc("filename"), [&] { return Image::Read(path); });
     for (int y = 0; y < image.Resolution().y; ++y)
         for (int x = 0; x < image.Resolution().x; ++x) {
             RGB v = image.GetChannels(Point2i(x, y));

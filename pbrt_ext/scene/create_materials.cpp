@@ -108,8 +108,9 @@ void SetShadingPerturbation(const ParameterDictionary &p, TextureResolver &textu
     if (p.HasParameter("displacement"))
         throw ParseError(*p.Loc("normalmap"), "a material takes \"displacement\" or \"normalmap\", "
                                               "not both");
-    m->SetNormalMap(
-        ImageTextureCache::Get(ResolvePath(textures.Folder(), normalMap), ColorEncoding::Linear()));
+    m->SetNormalMap(ReadFileAt(*p.Loc("normalmap"), [&] {
+        return ImageTextureCache::Get(ResolvePath(textures.Folder(), normalMap), ColorEncoding::Linear());
+    }));
 }
 
 // pbrt-v4's measured material: "filename", an RGL .bsdf file relative to the scene's folder. A

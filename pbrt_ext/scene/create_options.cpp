@@ -210,10 +210,15 @@ bool ReadGBufferSpace(const SceneEntity &e, const std::string &filename) {
 RGBFilm CreateFilm(const SceneEntity &e, Float exposureTime, Filter filter,
                    const RenderOverrides &overrides) {
     const ParameterDictionary &p = e.parameters;
+    if (e.name == "image")
+        throw ParseError(e.loc, "Film \"image\" is pbrt-v3's: this is a pbrt-v3 scene; upgrade it "
+                                "with pbrt-v4's `pbrt --upgrade old.pbrt > new.pbrt`");
     if (!e.name.empty() && e.name != "rgb" && e.name != "spectral" && e.name != "gbuffer")
         throw ParseError(e.loc, "unknown Film \"" + e.name + "\": expected rgb, spectral or gbuffer");
     Point2i resolution(p.GetOneInt("xresolution", 1280), p.GetOneInt("yresolution", 720));
     if (overrides.resolution) resolution = *overrides.resolution;
+    if (overrides.quick)  // as pbrt-v4's --quick
+        resolution = Point2i(std::max(1, resolution.x / 4), std::max(1, resolution.y / 4));
     CheckResolution(e, resolution);
     std::string filename = p.GetOneString("filename", "pbrt.exr");
     if (!overrides.outFile.empty())
@@ -292,6 +297,7 @@ Sampler CreateSampler(const SceneEntity &e, Point2i fullResolution,
     bool overridden = overrides.sampler.has_value();
     std::string name = overridden ? *overrides.sampler : e.name.empty() ? "zsobol" : e.name;
     int spp = overrides.spp.value_or(p.GetOneInt("pixelsamples", 16));
+    if (overrides.quick) spp = 1;  // as pbrt-v4's --quick
     auto reportUnused = [&] {
         if (!overridden) p.ReportUnused();
     };
@@ -360,6 +366,10 @@ void ReadMLTParameters(const ParameterDictionary &p, const RenderOverrides &over
     // --spp is the mutations per pixel, as in pbrt-v4.
     if (overrides.spp)
         mlt.mutationsPerPixel = *overrides.spp;
+    if (overrides.quick) {  // as pbrt-v4's --quick
+        mlt.mutationsPerPixel = std::max(1, mlt.mutationsPerPixel / 16);
+        mlt.bootstrapSamples = std::max<int64_t>(1, mlt.bootstrapSamples / 16);
+    }
     mlt.largeStepProbability = GetInRange<Float>(p, kMLT, "largestepprobability", 0.3f, 0, 1, "in [0, 1]");
     mlt.sigma = GetInRange<Float>(p, kMLT, "sigma", 0.01f, kTiny, Infinity, "positive");
     mlt.seed = overrides.seed;

@@ -170,7 +170,7 @@ std::shared_ptr<const PiecewiseConstant2D> EmissionDistribution(const ShapeScene
     std::string path = ResolvePath(folder, filename);
     if (!std::filesystem::is_regular_file(path))
         throw ParseError(*p.Loc("emissionfilename"), "cannot open image \"" + filename + "\" (looked for " + path + ")");
-    Image image = Image::Read(path);
+    Image image = ReadFileAt(*p.Loc("emissionfilename"), [&] { return Image::Read(path); });
     Point2i res = image.Resolution();
     std::vector<Float> f = image.GetSamplingDistribution();
     for (int y = 0; y < res.y / 2; ++y)  // t = 0 is the file's bottom row

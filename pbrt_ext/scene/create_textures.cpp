@@ -16,8 +16,10 @@ struct TextureResolver::Cache {
     std::map<std::string, SpectrumTexture> spectra;
 };
 
-TextureResolver::TextureResolver(const SceneDescription &scene, std::string folder)
-    : scene(scene), folder(std::move(folder)), cache(std::make_unique<Cache>()) {}
+TextureResolver::TextureResolver(const SceneDescription &scene, std::string folder,
+                                 bool averageImages)
+    : scene(scene), folder(std::move(folder)), cache(std::make_unique<Cache>()),
+      averageImages(averageImages) {}
 
 TextureResolver::~TextureResolver() = default;
 
@@ -78,7 +80,8 @@ Vector3f GetDirection(const TransformedSceneEntity &e) {
 
 // pbrt-v4's imagemap parameters, for both value types.
 template <typename ImageTexture>
-ImageTexture CreateImageTexture(const TransformedSceneEntity &e, const std::string &folder) {
+ImageTexture CreateImageTexture(const TransformedSceneEntity &e, const std::string &folder,
+                                bool averageOnly) {
     const ParameterDictionary &p = e.parameters;
     ImageTexture t;
     t.mapping = GetMapping(e);
@@ -111,8 +114,11 @@ ImageTexture CreateImageTexture(const TransformedSceneEntity &e, const std::stri
     t.invert = p.GetOneBool("invert", false);
     ImageChannels channels =
         std::is_same_v<ImageTexture, FloatImageTexture> ? ImageChannels::AlphaOfRGBA : ImageChannels::RGB;
-    t.mipmap = ImageTextureCache::GetMIPMap(path, *encoding, *wrapMode,
-                                            MIPMapFilterOptions{*filter, maxAnisotropy}, channels);
+    t.mipmap = ReadFileAt(LocOf(e, "filename"), [&] {
+        return ImageTextureCache::GetMIPMap(
+            path, *encoding, *wrapMode, MIPMapFilterOptions{*filter, maxAnisotropy, averageOnly},
+            channels);
+    });
     return t;
 }
 
@@ -156,7 +162,7 @@ FloatTexture TextureResolver::MakeFloat(const TransformedSceneEntity &e) {
         result = FloatBilerpTexture{GetMapping(e), tp.GetOneFloat("v00", 0), tp.GetOneFloat("v01", 1),
                                     tp.GetOneFloat("v10", 0), tp.GetOneFloat("v11", 1)};
     } else if (e.name == "imagemap") {
-        result = CreateImageTexture<FloatImageTexture>(e, folder);
+        result = CreateImageTexture<FloatImageTexture>(e, folder, averageImages);
     } else if (e.name == "fbm") {
         result = FBmTexture{TextureMapping3D{e.worldFromObject}, GetOctaves(e), tp.GetOneFloat("roughness", .5f)};
     } else if (e.name == "wrinkled") {
@@ -215,7 +221,7 @@ SpectrumTexture TextureResolver::MakeSpectrum(const TransformedSceneEntity &e, S
                                        GetSpectrum(tp, "v10", zero, type, folder),
                                        GetSpectrum(tp, "v11", one, type, folder)};
     } else if (e.name == "imagemap") {
-        SpectrumImageTexture t = CreateImageTexture<SpectrumImageTexture>(e, folder);
+        SpectrumImageTexture t = CreateImageTexture<SpectrumImageTexture>(e, folder, averageImages);
         t.type = type;
         result = std::move(t);
     } else if (e.name == "marble") {

@@ -592,6 +592,13 @@ void ParseFile(ParserTarget *target, const std::string &filename) {
     target->EndOfFiles();
 }
 
+void ParseFiles(ParserTarget *target, const std::vector<SceneFile> &files) {
+    for (const SceneFile &file : files)
+        Parser(target).Run(file.text ? Tokenizer(*file.text, file.filename)
+                                     : Tokenizer::FromFile(file.filename, nullptr));
+    target->EndOfFiles();
+}
+
 void ParseString(ParserTarget *target, std::string text, std::string name) {
     Parser(target).Run(Tokenizer(std::move(text), std::move(name)));
     target->EndOfFiles();

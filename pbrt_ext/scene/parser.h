@@ -100,6 +100,13 @@ class ParserTarget {
 
 // Parses a scene file and everything it Includes/Imports, then calls target->EndOfFiles().
 void ParseFile(ParserTarget *target, const std::string &filename);
+// A scene file to parse: read from its name, or its text already read (standard input).
+struct SceneFile {
+    std::string filename;
+    std::optional<std::string> text;
+};
+// Several files in order, as one scene (pbrt-v4's ParseFiles); then target->EndOfFiles().
+void ParseFiles(ParserTarget *target, const std::vector<SceneFile> &files);
 // The same for scene text held in memory; relative Include paths resolve against the
 // current directory, and locations name the text `name`.
 void ParseString(ParserTarget *target, std::string text, std::string name = "<string>");

@@ -23,6 +23,7 @@ constexpr KnownOption knownOptions[] = {{"disablepixeljitter", "bool"},
                                         {"msereferenceimage", "string"},
                                         {"msereferenceout", "string"},
                                         {"pixelstats", "bool"},
+                                        {"rendercoordsys", "string"},
                                         {"seed", "integer"},
                                         {"wavefront", "bool"}};
 
@@ -542,6 +543,13 @@ SceneDescription DescribeSceneFile(const std::string &filename) {
     SceneDescription scene;
     BasicSceneBuilder builder(&scene, filename);
     ParseFile(&builder, filename);
+    return scene;
+}
+
+SceneDescription DescribeSceneFiles(const std::vector<SceneFile> &files) {
+    SceneDescription scene;
+    BasicSceneBuilder builder(&scene, files.empty() ? "<input>" : files.front().filename);
+    ParseFiles(&builder, files);
     return scene;
 }
 

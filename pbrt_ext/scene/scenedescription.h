@@ -239,5 +239,7 @@ class BasicSceneBuilder : public ParserTarget {
 // The description of a scene file or text: ParseFile/ParseString into a BasicSceneBuilder.
 SceneDescription DescribeSceneFile(const std::string &filename);
 SceneDescription DescribeSceneString(std::string text, std::string name = "<string>");
+// Several files in order, as one scene.
+SceneDescription DescribeSceneFiles(const std::vector<SceneFile> &files);
 
 }  // namespace pbrt

@@ -103,27 +103,32 @@ class MediumResolver {
     std::map<std::string, int> indices;
 };
 
-// The Options this renderer follows; the others are warned about.
-constexpr const char *kDisplacementEdgeScale = "displacementedgescale";
-
-void WarnAboutOptions(const SceneDescription &scene) {
-    for (const auto &[name, option] : scene.options)
-        if (name != kDisplacementEdgeScale)
-            WarningAt(option.loc, "Option \"%s\" is not supported: ignored", name.c_str());
-}
-
-// The scene's Option, else the command line's (pbrt-v4 applies the file's over its command
-// line's). The scene description has checked that the value is a finite float; a scale that is
-// not positive is an error at the Option, as it is on the command line.
-Float DisplacementEdgeScale(const SceneDescription &scene, const RenderOverrides &overrides) {
-    auto option = scene.options.find(kDisplacementEdgeScale);
-    if (option == scene.options.end())
-        return overrides.displacementEdgeScale;
-    Float scale = std::stof(option->second.value);
-    if (!(scale > 0))
-        throw ParseError(option->second.loc, "option \"displacementedgescale\" is " +
-                                                 option->second.value + "; expected a positive scale");
-    return scale;
+// The command line's overrides with the scene's Option directives applied over them, as pbrt-v4
+// applies them (the file wins). The scene description has checked each value's type.
+RenderOverrides WithSceneOptions(const SceneDescription &scene, RenderOverrides overrides) {
+    for (const auto &[name, option] : scene.options) {
+        const std::string &value = option.value;
+        if (name == "disablepixeljitter") overrides.disablePixelJitter = value == "true";
+        else if (name == "disabletexturefiltering") overrides.disableTextureFiltering = value == "true";
+        else if (name == "disablewavelengthjitter") overrides.disableWavelengthJitter = value == "true";
+        else if (name == "forcediffuse") overrides.forceDiffuse = value == "true";
+        else if (name == "seed") overrides.seed = std::stoi(value);
+        else if (name == "wavefront" && value == "true") overrides.integrator = "volpath";
+        else if (name == "displacementedgescale") {
+            overrides.displacementEdgeScale = std::stof(value);
+            if (!(overrides.displacementEdgeScale > 0))
+                throw ParseError(option.loc, "option \"displacementedgescale\" is " + value +
+                                                 "; expected a positive scale");
+        } else if (name == "rendercoordsys") {
+            if (value != "camera" && value != "cameraworld" && value != "world")
+                throw ParseError(option.loc, "option \"rendercoordsys\" is \"" + value +
+                                                 "\"; expected camera, cameraworld or world");
+            // pbrt_ext renders in world space: the name changes only pbrt-v4's rounding.
+        } else {
+            WarningAt(option.loc, "Option \"%s\" is not supported yet: ignored", name.c_str());
+        }
+    }
+    return overrides;
 }
 
 // What turns a shape's names into the builder's indices, and the scale of its displacement's
@@ -246,11 +251,14 @@ void CheckIntegratorFits(const SceneDescription &scene, const IntegratorOptions 
 
 }  // namespace
 
-std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverrides &overrides) {
-    SceneDescription scene = DescribeSceneFile(filename);
-    // Relative paths (meshes, images, spectra) are relative to the main file's folder.
-    const std::string folder = std::filesystem::absolute(filename).parent_path().string();
-    WarnAboutOptions(scene);
+std::unique_ptr<Scene> LoadScene(const std::vector<SceneFile> &files,
+                                 const RenderOverrides &commandLine) {
+    SceneDescription scene = DescribeSceneFiles(files);
+    // Relative paths (meshes, images, spectra) are relative to the first file's folder.
+    const std::string folder = files.front().text
+                                   ? std::filesystem::current_path().string()
+                                   : std::filesystem::absolute(files.front().filename).parent_path().string();
+    const RenderOverrides overrides = WithSceneOptions(scene, commandLine);
 
     RGBFilm film = CreateFilm(scene.film, ExposureTime(scene.camera), CreateFilter(scene.filter),
                               overrides);
@@ -261,11 +269,13 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
     CheckIntegratorFits(scene, integrator, camera, film, sampler);
     SceneBuilder builder(std::move(camera), std::move(film), std::move(sampler));
     builder.SetIntegrator(integrator);
+    builder.SetSwitches({overrides.forceDiffuse, !overrides.disablePixelJitter,
+                         !overrides.disableWavelengthJitter, !overrides.disableTextureFiltering});
     builder.SetLightSampler(lightSampler);
-    TextureResolver textures(scene, folder);
+    TextureResolver textures(scene, folder, overrides.disableImageTextures);
     MaterialResolver materials(scene, builder, overrides, textures);
     MediumResolver media(scene, builder, folder);
-    Resolvers resolvers{materials, textures, media, DisplacementEdgeScale(scene, overrides)};
+    Resolvers resolvers{materials, textures, media, overrides.displacementEdgeScale};
     builder.SetCameraMedium(media.For(scene.camera.medium));
 
     std::vector<int> worldShapes;
@@ -274,11 +284,16 @@ std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverri
             worldShapes.push_back(int(i));
     AddShapes(scene, worldShapes, builder, resolvers);
     AddInstances(scene, builder, resolvers);
-    if (textures.ReadsFootprint()) builder.RequireRayDifferentials();
+    if (textures.ReadsFootprint() && !overrides.disableTextureFiltering)
+        builder.RequireRayDifferentials();
     for (const LightSceneEntity &light : scene.lights)
         if (std::optional<Light> l = CreateLight(light, folder))
             builder.AddLight(std::move(*l), media.For(light.medium));
     return builder.Build();
+}
+
+std::unique_ptr<Scene> LoadScene(const std::string &filename, const RenderOverrides &overrides) {
+    return LoadScene(std::vector<SceneFile>{{filename, std::nullopt}}, overrides);
 }
 
 }  // namespace pbrt

@@ -16,7 +16,9 @@ std::optional<FilterFunction> ParseFilterFunction(const std::string &name) {
 
 MIPMap::MIPMap(Image image, WrapMode wrapMode, MIPMapFilterOptions options)
     : pyramid(Image::GeneratePyramid(std::move(image), wrapMode)), wrapMode(wrapMode),
-      options(options) {}
+      options(options) {
+    if (options.averageOnly) pyramid.erase(pyramid.begin(), pyramid.end() - 1);
+}
 
 namespace {
 

@@ -30,6 +30,8 @@ struct MIPMapFilterOptions {
     FilterFunction filter = FilterFunction::Bilinear;
     // EWA lengthens the minor axis until the ellipse is at most this eccentric.
     Float maxAnisotropy = 8;
+    // Only the pyramid's top texel, the image's average (pbrt-v4's --disable-image-textures).
+    bool averageOnly = false;
     friend bool operator==(const MIPMapFilterOptions &, const MIPMapFilterOptions &) = default;
 };
 

@@ -102,7 +102,8 @@ class OnceCache {
 };
 
 using ImageKey = std::pair<std::string, std::string>;  // file, encoding
-using MIPMapKey = std::tuple<std::string, std::string, int, int, Float, int>;  // and wrap, filter, channels
+// The file, its encoding, wrap, filter, anisotropy, channels and averageOnly.
+using MIPMapKey = std::tuple<std::string, std::string, int, int, Float, int, bool>;
 
 OnceCache<ImageKey, Image> &Images() {
     static OnceCache<ImageKey, Image> images;
@@ -127,7 +128,7 @@ std::shared_ptr<const MIPMap> ImageTextureCache::GetMIPMap(const std::string &fi
                                                           MIPMapFilterOptions options,
                                                           ImageChannels channels) {
     MIPMapKey key(filename, encoding.ToString(), int(wrapMode), int(options.filter),
-                  options.maxAnisotropy, int(channels));
+                  options.maxAnisotropy, int(channels), options.averageOnly);
     return MIPMaps().Get(key, [&] {
         return MIPMap(Image::Read(filename, encoding, channels), wrapMode, options);
     });
