@@ -22,12 +22,15 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
+
+#include <unistd.h>
 
 namespace pbrt {
 
@@ -80,6 +83,30 @@ std::unique_ptr<ImageFileReader> OpenImageFile(const std::string &path) {
 }  // namespace
 
 bool IsEXRFilename(const std::string &path) { return LowercaseExtension(path) == ".exr"; }
+
+std::optional<std::string> ImageWriteError(const std::string &path) {
+    namespace fs = std::filesystem;
+    const std::string extension = LowercaseExtension(path);
+    if (extension.empty())
+        return "\"" + path + "\" has no extension to choose an image format by (.exr, .pfm, .png, ...)";
+    if (extension != ".exr" && extension != ".png" && extension != ".pfm") {
+        try {
+            if (!GetImageCodec().HasWriter(path))
+                return "no image writer for \"" + extension + "\" (" + path + "): use .exr, .pfm, .png "
+                       "or another format OpenImageIO writes";
+        } catch (const std::runtime_error &e) {
+            return std::string(e.what());
+        }
+    }
+    fs::path folder = fs::path(path).parent_path();
+    if (folder.empty()) folder = ".";
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec))
+        return "the folder \"" + folder.string() + "\" of " + path + " does not exist";
+    if (::access(folder.c_str(), W_OK) != 0)
+        return "the folder \"" + folder.string() + "\" of " + path + " is not writable";
+    return std::nullopt;
+}
 
 const RGBColorSpace &Image::ColorSpace() const {
     return colorSpace ? *colorSpace : RGBColorSpace::sRGB();
@@ -303,6 +330,8 @@ void Image::Write(const std::string &path, const ImageMetadata &metadata,
                                      std::to_string(nPixels) + " pixels");
     if (IsEXRFilename(path))
         WriteFileAtomically(path, [&](const std::string &tmp) { WriteEXR(path, tmp, metadata, extraChannels); });
+    else if (extraChannels.empty() && LowercaseExtension(path) == ".pfm")
+        WriteFileAtomically(path, [&](const std::string &tmp) { WritePFM(tmp); });
     else if (extraChannels.empty())
         WriteFileAtomically(path, [&](const std::string &tmp) { Write8Bit(path, tmp); });
     else
@@ -378,6 +407,21 @@ std::vector<Float> Image::DecodeBytes() const {
         for (int x = 0; x < resolution.x; ++x)
             for (int c = 0; c < 3; ++c) rgb[3 * PixelIndex(Point2i(x, y)) + size_t(c)] = GetChannel(Point2i(x, y), c);
     return rgb;
+}
+
+void Image::WritePFM(const std::string &tmpPath) const {
+    std::vector<Float> scratch;
+    const std::vector<Float> &rgb = FloatRGB(scratch);
+    std::FILE *f = std::fopen(tmpPath.c_str(), "wb");
+    if (!f) ThrowFileError(tmpPath, "cannot open for writing");
+    bool ok = std::fprintf(f, "PF\n%d %d\n-1\n", resolution.x, resolution.y) > 0;
+    std::vector<float> row(3 * size_t(resolution.x));
+    for (int y = resolution.y - 1; y >= 0 && ok; --y) {  // PFM's first row is the bottom one
+        std::copy_n(rgb.begin() + 3 * size_t(y) * resolution.x, row.size(), row.begin());
+        static_assert(std::endian::native == std::endian::little, "PFM with scale -1 is little-endian");
+        ok = std::fwrite(row.data(), sizeof(float), row.size(), f) == row.size();
+    }
+    if (std::fclose(f) != 0 || !ok) ThrowFileError(tmpPath, "cannot write the image");
 }
 
 void Image::Write8Bit(const std::string &path, const std::string &tmpPath) const {

@@ -173,6 +173,10 @@ struct EXRChannels {
 // writes that keeps channels besides R, G and B.
 bool IsEXRFilename(const std::string &path);
 
+// Why Image::Write could not write path, for a check before the work that makes the image: no
+// writer for its extension, or a folder that is missing or not writable. None when it can.
+std::optional<std::string> ImageWriteError(const std::string &path);
+
 // keptBytesPerPixel: what the caller will make of each pixel, checked with the read against the
 // memory budget (util/resourcelimits.h). Throws std::runtime_error("<path>: error: <what>"), also
 // for a file that is not OpenEXR, or too large for the budget.
@@ -256,6 +260,8 @@ class Image {
     void WriteEXR(const std::string &path, const std::string &tmpPath, const ImageMetadata &metadata,
                   const std::vector<ImageExtraChannel> &extraChannels) const;
     void Write8Bit(const std::string &path, const std::string &tmpPath) const;
+    // Portable float map: linear float RGB, bottom row first, little-endian (scale -1).
+    void WritePFM(const std::string &tmpPath) const;
     // An 8-bit image's pixels as float RGB, row-major.
     std::vector<Float> DecodeBytes() const;
     // The pixels as float RGB: the image's own, or an 8-bit image's decoded into scratch.

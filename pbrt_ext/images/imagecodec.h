@@ -25,6 +25,8 @@ class ImageCodec {
     // std::runtime_error(<reason>).
     virtual void Write8Bit(const std::string &path, const std::string &tmpPath, int width, int height,
                            const uint8_t *rgb) const = 0;
+    // Whether a writer takes the format path's extension names.
+    virtual bool HasWriter(const std::string &path) const = 0;
     // The threads OpenImageIO (and OpenEXR through it) decode with.
     virtual void SetThreads(int n) const = 0;
 };

@@ -79,6 +79,9 @@ class OIIOCodec : public ImageCodec {
         if (!out->open(tmpPath, spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb) || !out->close())
             throw std::runtime_error("cannot write the image: " + out->geterror());
     }
+    bool HasWriter(const std::string &path) const override {
+        return OIIO::ImageOutput::create(path) != nullptr;
+    }
     void SetThreads(int n) const override {
         OIIO::attribute("threads", n);
         OIIO::attribute("exr_threads", n);
