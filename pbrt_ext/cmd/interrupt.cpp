@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
+#include <ctime>
 #include <string_view>
 
 namespace pbrt {
@@ -16,6 +18,15 @@ namespace {
 static_assert(std::atomic<bool>::is_always_lock_free);
 std::atomic<bool> renderRunning{false};
 std::atomic<bool> interruptRequested{false};
+static_assert(std::atomic<int64_t>::is_always_lock_free);
+std::atomic<int64_t> firstInterruptNanoseconds{0};
+
+// CLOCK_MONOTONIC, which clock_gettime reads async-signal-safely (POSIX).
+int64_t NowNanoseconds() {
+    timespec t{};
+    ::clock_gettime(CLOCK_MONOTONIC, &t);
+    return int64_t(t.tv_sec) * 1000000000 + t.tv_nsec;
+}
 
 // write(2): stdio is not async-signal-safe. A failed write leaves nothing to do.
 void Say(std::string_view message) {
@@ -24,11 +35,21 @@ void Say(std::string_view message) {
 
 void OnInterrupt(int) {
     const int savedErrno = errno;  // the interrupted code may be about to read it
-    if (renderRunning.load() && !interruptRequested.exchange(true)) {
-        Say("\npbrt_ext: interrupt: stopping at the next tile boundary to write the image "
-            "(interrupt again to quit without writing)\n");
-        errno = savedErrno;
-        return;
+    if (renderRunning.load()) {
+        const int64_t now = NowNanoseconds();
+        if (!interruptRequested.exchange(true)) {
+            firstInterruptNanoseconds.store(now);
+            Say("\npbrt_ext: interrupt: stopping at the next tile boundary to write the image "
+                "(interrupt again, a second later, to quit without writing)\n");
+            errno = savedErrno;
+            return;
+        }
+        // The same interrupt, delivered twice: a shell or `timeout` signals the process and its
+        // group together, and a person does not press Ctrl-C twice within this interval.
+        if (now - firstInterruptNanoseconds.load() < kSameInterruptNanoseconds) {
+            errno = savedErrno;
+            return;
+        }
     }
     Say("\npbrt_ext: interrupted: quitting without writing the image\n");
     RemoveUnfinishedFiles();

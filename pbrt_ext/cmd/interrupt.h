@@ -9,6 +9,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 
 namespace pbrt {
 
@@ -20,7 +21,10 @@ constexpr int kInterruptedExitStatus = 130;
 void InstallInterruptHandler();
 
 // Between the two, the first SIGINT sets RenderInterrupt() and says on stderr that the render
-// stops at the next tile boundary; a second one ends the program without writing the image.
+// stops at the next tile boundary. Another within kSameInterruptNanoseconds of it is the same
+// interrupt delivered twice (to the process and to its group) and changes nothing; one later is
+// a deliberate second Ctrl-C and ends the program without writing the image.
+constexpr int64_t kSameInterruptNanoseconds = 1000000000;
 void BeginInterruptibleRender();
 void EndInterruptibleRender();
 

@@ -27,7 +27,8 @@ int MergeMain(int argc, char **argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError &e) {
-        return app.exit(e);
+        // Help is success; anything else a bad command line (cmd/commandline.h).
+        return app.exit(e) == 0 ? 0 : 2;
     }
     try {
         // One slice in memory at a time besides the sum, however many there are.

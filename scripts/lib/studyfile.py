@@ -101,7 +101,7 @@ class Study:
     def common_args(self):
         args = ["--nthreads", str(self.threads)]
         if self.resolution:
-            args += ["--resolution", *map(str, self.resolution)]
+            args += ["--resolution", ",".join(map(str, self.resolution))]
         return args
 
     def configurations(self):

@@ -7,6 +7,7 @@
 
 #include "pbrt_ext/film/film.h"
 #include "pbrt_ext/images/image.h"
+#include "pbrt_ext/cmd/interrupt.h"
 #include "pbrt_ext/render.h"
 #include "pbrt_ext/util/atomicfile.h"
 
@@ -30,6 +31,7 @@
 #include <optional>
 #include <string>
 #include <system_error>
+#include <thread>
 #include <vector>
 
 extern char **environ;
@@ -97,7 +99,7 @@ constexpr double kTimeoutSeconds = 120;
 // The command's stderr when it starts rendering (from then on SIGINT stops the render) and when
 // it has taken the first SIGINT.
 constexpr const char *kRenderStarted = "pbrt_ext: rendering ";
-constexpr const char *kFirstInterruptTaken = "interrupt again to quit without writing";
+constexpr const char *kFirstInterruptTaken = "interrupt again, a second later, to quit without writing";
 // The progress bar's first redraw (250 ms into the render).
 constexpr const char *kProgressDrawn = "Rendering [";
 
@@ -222,30 +224,27 @@ void ExpectInterruptedExit(std::optional<int> status, const std::string &output)
     EXPECT_EQ(WEXITSTATUS(*status), 130) << output;
 }
 
-// "pbrt_ext: interrupted: N samples per pixel (M in part of the image) written to FILE", the
-// parenthesis only where M > N.
+// "pbrt_ext: interrupted: wrote FILE: N of S samples per pixel (M in part of the image) in T s",
+// the parenthesis only where M > N.
 struct InterruptedMessage {
     int samplesPerPixel = 0, maxSamplesPerPixel = 0;
     std::string file;
 };
 
 std::optional<InterruptedMessage> ParseInterruptedMessage(const std::string &output) {
-    size_t at = output.find("pbrt_ext: interrupted: ");
+    size_t at = output.find("pbrt_ext: interrupted: wrote ");
     if (at == std::string::npos)
         return {};
     const char *line = output.c_str() + at;
     InterruptedMessage m;
     char file[4096];
-    if (std::sscanf(line, "pbrt_ext: interrupted: %d samples per pixel written to %4095s",
-                    &m.samplesPerPixel, file) == 2) {
-        m.maxSamplesPerPixel = m.samplesPerPixel;
-    } else if (std::sscanf(line,
-                           "pbrt_ext: interrupted: %d samples per pixel (%d in part of the image) "
-                           "written to %4095s",
-                           &m.samplesPerPixel, &m.maxSamplesPerPixel, file) != 3) {
+    int asked = 0, consumed = 0;
+    if (std::sscanf(line, "pbrt_ext: interrupted: wrote %4095[^:]: %d of %d samples per pixel%n",
+                    file, &m.samplesPerPixel, &asked, &consumed) != 3)
         return {};
-    }
     m.file = file;
+    m.maxSamplesPerPixel = m.samplesPerPixel;
+    std::sscanf(line + consumed, " (%d in part of the image)", &m.maxSamplesPerPixel);
     return m;
 }
 
@@ -259,7 +258,7 @@ int IntAttribute(const Imf::Header &header, const char *name) {
 TEST_F(InterruptCli, FirstSigintWritesTheSamplesSoFarWithTheirCount) {
     // The light strategy gives every sample variance, so the image mean tests the weighting of
     // samples in an image whose tiles may hold different counts. 32 x 32 pixels make quick waves.
-    RunningCli cli({"--nthreads", "2", "--strategy", "light", "--pixelbounds", "0", "32", "0", "32",
+    RunningCli cli({"--nthreads", "2", "--strategy", "light", "--pixelbounds", "0,32,0,32",
                     "--outfile", Output(), kFurnace});
     ASSERT_TRUE(cli.WaitForOutput(kRenderStarted)) << cli.Output();
     // Some waves in: the render is well under way, and the first wave is done.
@@ -305,13 +304,27 @@ TEST_F(InterruptCli, FirstSigintWritesTheSamplesSoFarWithTheirCount) {
         << spp << " to " << maxSpp << " samples per pixel";
 }
 
-TEST_F(InterruptCli, SecondSigintQuitsAtOnceWithoutWriting) {
-    // The first SIGINT comes in the first wave, which completes before the render stops: over a
-    // million pixels, that leaves time for the second to arrive before the image is written.
-    RunningCli cli({"--nthreads", "2", "--outfile", Output(), kFurnace});
+TEST_F(InterruptCli, TwoSigintsTogetherAreOneInterrupt) {
+    // As `timeout -s INT` and a shell's job control deliver it: to the process and its group.
+    RunningCli cli({"--nthreads", "2", "--pixelbounds", "0,32,0,32", "--outfile", Output(), kFurnace});
+    ASSERT_TRUE(cli.WaitForOutput(kProgressDrawn)) << cli.Output();
+    cli.Interrupt();
+    cli.Interrupt();
+    ExpectInterruptedExit(cli.WaitForExit(), cli.Output());
+    EXPECT_EQ(cli.Output().find("quitting without writing"), std::string::npos) << cli.Output();
+    EXPECT_TRUE(ParseInterruptedMessage(cli.Output())) << cli.Output();
+    EXPECT_EQ(FilesInDir(), std::vector<std::string>{"furnace.exr"});
+}
+
+TEST_F(InterruptCli, ADeliberateSecondSigintQuitsAtOnceWithoutWriting) {
+    // The first SIGINT comes in the first wave, which completes before the render stops: 16.7
+    // million pixels on one thread take seconds, time for a second Ctrl-C well after the first.
+    RunningCli cli({"--nthreads", "1", "--resolution", "4096,4096", "--outfile", Output(), kFurnace});
     ASSERT_TRUE(cli.WaitForOutput(kRenderStarted)) << cli.Output();
     cli.Interrupt();
     ASSERT_TRUE(cli.WaitForOutput(kFirstInterruptTaken)) << cli.Output();
+    std::this_thread::sleep_for(std::chrono::nanoseconds(kSameInterruptNanoseconds) +
+                                std::chrono::milliseconds(200));
     cli.Interrupt();
     ExpectInterruptedExit(cli.WaitForExit(), cli.Output());
     EXPECT_NE(cli.Output().find("quitting without writing the image"), std::string::npos)
@@ -326,7 +339,7 @@ TEST_F(InterruptCli, SigintInTheFirstWaveStillSamplesEveryPixel) {
     // every sample lies within FurnaceSampleRGB's range (about [0.38, 0.63] in red, [0.47, 0.53]
     // in green, [0.10, 0.91] in blue; it was exactly 0.5 before spectral transport), and an
     // unsampled pixel is 0.
-    RunningCli cli({"--nthreads", "2", "--pixelbounds", "0", "256", "0", "256", "--outfile",
+    RunningCli cli({"--nthreads", "2", "--pixelbounds", "0,256,0,256", "--outfile",
                     Output(), kFurnace});
     ASSERT_TRUE(cli.WaitForOutput(kRenderStarted)) << cli.Output();
     cli.Interrupt();

@@ -298,7 +298,7 @@ class MakespanModel(unittest.TestCase):
 class RenderDistributed(StudyCase):
     def test_parts_merge_into_the_single_render(self):
         scene = os.path.join(REPO, "scenes", "cornell-box-fabric.pbrt")
-        common = ["--spp", "12", "--resolution", "40", "30", "--seed", "5"]
+        common = ["--spp", "12", "--resolution", "40,30", "--seed", "5"]
         single = os.path.join(self.dir, "single.exr")
         subprocess.run([BINARY, "--quiet", *common, "--outfile", single, scene], check=True,
                        timeout=TIMEOUT)
@@ -327,7 +327,7 @@ class RenderDistributed(StudyCase):
     def test_merge_refuses_overlapping_slices_and_writes_nothing(self):
         scene = os.path.join(SCENES, "cylinder_r0.1.pbrt")
         part = os.path.join(self.dir, "part.exr")
-        subprocess.run([BINARY, "--quiet", "--spp", "4", "--resolution", "16", "12", "--samples",
+        subprocess.run([BINARY, "--quiet", "--spp", "4", "--resolution", "16,12", "--samples",
                         "0:3", "--outfile", part, scene], check=True, timeout=TIMEOUT)
         out = os.path.join(self.dir, "out.exr")
         done = subprocess.run([BINARY, "merge", out, part, part], capture_output=True, text=True,

@@ -1,0 +1,270 @@
+// pbrt-v4's command line: the parser (cmd/commandline.h) on pbrt-v4's syntax, and the pbrt_ext
+// command itself, spawned, for its exit statuses, messages, output-file check, standard input and
+// several scene files.
+#include "pbrt_ext/cmd/commandline.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+using namespace pbrt;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+CommandLine Parse(std::vector<std::string> args) { return ParseCommandLine(args); }
+
+std::string ErrorOf(std::vector<std::string> args) {
+    try {
+        ParseCommandLine(args);
+    } catch (const CommandLineError &e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(CommandLine, CommaListsAsPbrtV4) {
+    CommandLine c = Parse({"--cropwindow", "0,0.5,0.25,1", "--pixelbounds=1,20,3,40", "s.pbrt"});
+    EXPECT_EQ(c.overrides.cropWindow, Bounds2f(Point2f(0, 0.25f), Point2f(0.5f, 1)));
+    EXPECT_EQ(c.overrides.pixelBounds, Bounds2i(Point2i(1, 3), Point2i(20, 40)));
+    EXPECT_EQ(c.sceneFiles, std::vector<std::string>{"s.pbrt"});
+    c = Parse({"--pixel", "7,9"});
+    EXPECT_EQ(c.overrides.pixelBounds, Bounds2i(Point2i(7, 9), Point2i(8, 10)));
+    c = Parse({"--resolution", "64,48"});
+    EXPECT_EQ(c.overrides.resolution, Point2i(64, 48));
+    // The same numbers with spaces, as pbrt_ext took them before.
+    c = Parse({"--resolution", "64", "48", "--cropwindow", "0", "0.5", "0.25", "1", "s.pbrt"});
+    EXPECT_EQ(c.overrides.resolution, Point2i(64, 48));
+    EXPECT_EQ(c.overrides.cropWindow, Bounds2f(Point2f(0, 0.25f), Point2f(0.5f, 1)));
+    EXPECT_EQ(c.sceneFiles, std::vector<std::string>{"s.pbrt"});
+}
+
+TEST(CommandLine, NamesAsPbrtV4MatchesThem) {
+    // One or two dashes, "=value", and names ignoring case, '-' and '_'.
+    CommandLine c = Parse({"-spp", "8", "--NThreads=3", "--disable_pixel_jitter", "--quiet=false"});
+    EXPECT_EQ(c.overrides.spp, 8);
+    EXPECT_EQ(c.overrides.nThreads, 3);
+    EXPECT_TRUE(c.overrides.disablePixelJitter);
+    EXPECT_FALSE(c.overrides.quiet);
+}
+
+TEST(CommandLine, TheLastOfARepeatedOptionWins) {
+    CommandLine c = Parse({"--spp", "4", "--quiet", "--spp", "16", "--quiet=false", "a.pbrt", "b.pbrt"});
+    EXPECT_EQ(c.overrides.spp, 16);
+    EXPECT_FALSE(c.overrides.quiet);
+    EXPECT_EQ(c.sceneFiles, (std::vector<std::string>{"a.pbrt", "b.pbrt"}));
+}
+
+TEST(CommandLine, EveryPbrtV4SwitchSetsItsOverride) {
+    CommandLine c = Parse({"--quick", "--force-diffuse", "--disable-wavelength-jitter",
+                           "--disable-texture-filtering", "--disable-image-textures", "--stats",
+                           "--seed", "-3", "--outfile", "x.pfm", "--displacement-edge-scale", "2",
+                           "--render-coord-sys", "world", "--log-level", "verbose", "--log-file", "l.txt"});
+    const RenderOverrides &o = c.overrides;
+    EXPECT_TRUE(o.quick && o.forceDiffuse && o.disableWavelengthJitter &&
+                o.disableTextureFiltering && o.disableImageTextures && o.stats);
+    EXPECT_EQ(o.seed, -3);
+    EXPECT_EQ(o.outFile, "x.pfm");
+    EXPECT_EQ(o.displacementEdgeScale, 2);
+    EXPECT_EQ(c.logLevel, LogLevel::Verbose);
+    EXPECT_EQ(c.logFile, "l.txt");
+}
+
+TEST(CommandLine, WavefrontRendersWithVolpath) {
+    EXPECT_EQ(Parse({"--wavefront"}).overrides.integrator, "volpath");
+    // An explicit integrator wins, wherever it is.
+    EXPECT_EQ(Parse({"--integrator", "bdpt", "--wavefront"}).overrides.integrator, "bdpt");
+}
+
+TEST(CommandLine, StandardInputIsADash) {
+    EXPECT_EQ(Parse({"-", "--spp", "1"}).sceneFiles, std::vector<std::string>{"-"});
+}
+
+TEST(CommandLine, BadValuesSayWhatIsExpected) {
+    EXPECT_NE(ErrorOf({"--cropwindow", "0,0.5,0"}).find("expected 4 comma-separated values"), std::string::npos);
+    EXPECT_NE(ErrorOf({"--cropwindow", "0 1 0 1"}).find("--cropwindow"), std::string::npos);
+    EXPECT_NE(ErrorOf({"--spp", "0"}).find("less than 1"), std::string::npos);
+    EXPECT_NE(ErrorOf({"--spp", "-5"}).find("less than 1"), std::string::npos);
+    EXPECT_NE(ErrorOf({"--spp", "4x"}).find("not an integer"), std::string::npos);
+    EXPECT_NE(ErrorOf({"--spp"}).find("expected a value"), std::string::npos);
+    EXPECT_NE(ErrorOf({"--quiet=maybe"}).find("true or false"), std::string::npos);
+    EXPECT_NE(ErrorOf({"--log-level", "loud"}).find("verbose, error or fatal"), std::string::npos);
+    EXPECT_NE(ErrorOf({"--integrator", "pathh"}).find("--integrator"), std::string::npos);
+    EXPECT_NE(ErrorOf({"--render-coord-sys", "screen"}).find("camera, cameraworld or world"), std::string::npos);
+}
+
+TEST(CommandLine, AnUnknownOptionSuggestsTheNearest) {
+    EXPECT_NE(ErrorOf({"--sp", "4", "scene.pbrt"}).find("unknown option --sp; did you mean --spp?"),
+              std::string::npos);
+    EXPECT_NE(ErrorOf({"--cropwindw", "0,1,0,1"}).find("did you mean --cropwindow?"), std::string::npos);
+    EXPECT_NE(ErrorOf({"--outfil", "x.exr"}).find("did you mean --outfile?"), std::string::npos);
+    // Nothing near: no suggestion.
+    std::string far = ErrorOf({"--zzzzzzzzzzzz"});
+    EXPECT_NE(far.find("unknown option"), std::string::npos);
+    EXPECT_EQ(far.find("did you mean"), std::string::npos);
+}
+
+TEST(CommandLine, GpuOptionsAreRefusedWithTheReason) {
+    EXPECT_NE(ErrorOf({"--gpu"}).find("renders on the CPU"), std::string::npos);
+    EXPECT_NE(ErrorOf({"--interactive"}).find("not supported"), std::string::npos);
+}
+
+TEST(CommandLine, HelpGroupsPbrtV4sOptionsThenOursAndShowsMerge) {
+    std::string help = CommandLineHelp();
+    size_t v4 = help.find("pbrt-v4's options:"), ours = help.find("pbrt_ext's own options:");
+    ASSERT_NE(v4, std::string::npos);
+    ASSERT_NE(ours, std::string::npos);
+    EXPECT_LT(v4, ours);
+    EXPECT_LT(help.find("--cropwindow <x0,x1,y0,y1>"), ours);
+    EXPECT_GT(help.find("--integrator <name>"), ours);
+    EXPECT_NE(help.find("pbrt_ext merge"), std::string::npos);
+    EXPECT_NE(help.find("130 interrupted"), std::string::npos);
+}
+
+// ---- The command ------------------------------------------------------------------------------
+
+struct Result {
+    int status = -1;
+    std::string output;  // standard output and error together
+};
+
+// Runs the command through the shell (stdin, redirections), in dir.
+Result Command(const std::string &args, const fs::path &dir) {
+    std::string line = "cd '" + dir.string() + "' && '" + std::string(PBRT_EXT_CLI) + "' " + args + " 2>&1";
+    Result run;
+    std::FILE *pipe = ::popen(line.c_str(), "r");
+    if (!pipe) return run;
+    char buffer[4096];
+    while (size_t n = std::fread(buffer, 1, sizeof(buffer), pipe)) run.output.append(buffer, n);
+    int status = ::pclose(pipe);
+    run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return run;
+}
+
+constexpr const char *kCamera = "Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 6\n"
+                                "Sampler \"independent\" \"integer pixelsamples\" 2\n"
+                                "Camera \"perspective\"\n";
+constexpr const char *kWorld = "WorldBegin\nLightSource \"infinite\" \"rgb L\" [1 1 1]\n"
+                               "Material \"diffuse\"\nShape \"sphere\" \"float radius\" 0.5\n";
+
+class CommandTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() /
+              ("pbrt_ext_cli_" + std::to_string(::getpid()) + "_" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        Write("camera.pbrt", kCamera);
+        Write("world.pbrt", kWorld);
+        Write("scene.pbrt", std::string(kCamera) + kWorld);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    void Write(const std::string &name, const std::string &text) { std::ofstream(dir / name) << text; }
+    fs::path dir;
+};
+
+TEST_F(CommandTest, ExitStatuses) {
+    EXPECT_EQ(Command("--quiet --outfile out.exr scene.pbrt", dir).status, 0);
+    EXPECT_EQ(Command("--sp 4 scene.pbrt", dir).status, 2);
+    EXPECT_EQ(Command("--spp 0 scene.pbrt", dir).status, 2);
+    Write("bad.pbrt", "WorldBegin\nShape \"nonsense\"\n");
+    Result bad = Command("bad.pbrt", dir);
+    EXPECT_EQ(bad.status, 1);
+    EXPECT_NE(bad.output.find("bad.pbrt:2:"), std::string::npos) << bad.output;
+    EXPECT_EQ(Command("merge", dir).status, 2);
+}
+
+TEST_F(CommandTest, VersionAndHelpNeedNoScene) {
+    Result version = Command("--version", dir);
+    EXPECT_EQ(version.status, 0);
+    EXPECT_EQ(version.output.rfind("pbrt_ext ", 0), 0u) << version.output;
+    Result help = Command("--help", dir);
+    EXPECT_EQ(help.status, 0);
+    EXPECT_NE(help.output.find("merge"), std::string::npos);
+}
+
+TEST_F(CommandTest, AnOutfileThatCantBeWrittenStopsBeforeTheRender) {
+    for (const char *name : {"x.foo", "noextension", "/nonexistent/dir/x.exr"}) {
+        Result run = Command(std::string("--outfile ") + name + " scene.pbrt", dir);
+        EXPECT_EQ(run.status, 2) << name << ": " << run.output;
+        EXPECT_EQ(run.output.find("rendering"), std::string::npos) << name << ": " << run.output;
+        EXPECT_EQ(run.output.find(".tmp"), std::string::npos) << run.output;
+    }
+    // The film's own filename is checked after loading, still before rendering.
+    Write("film.pbrt", std::string("Film \"rgb\" \"string filename\" \"y.foo\"\n") + kWorld);
+    Result film = Command("film.pbrt", dir);
+    EXPECT_EQ(film.status, 1) << film.output;
+    EXPECT_NE(film.output.find("nothing rendered"), std::string::npos) << film.output;
+    EXPECT_FALSE(fs::exists(dir / "y.foo"));
+}
+
+// Reads a PFM's header and pixel count; the file is the one just written.
+TEST_F(CommandTest, WritesPFMAndSaysWhere) {
+    Result run = Command("--outfile out.pfm scene.pbrt", dir);
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("wrote out.pfm: 2 of 2 samples per pixel"), std::string::npos) << run.output;
+    std::ifstream in(dir / "out.pfm", std::ios::binary);
+    std::string magic, scale;
+    int w = 0, h = 0;
+    in >> magic >> w >> h >> scale;
+    EXPECT_EQ(magic, "PF");
+    EXPECT_EQ(w, 8);
+    EXPECT_EQ(h, 6);
+    EXPECT_EQ(scale, "-1");
+    EXPECT_EQ(fs::file_size(dir / "out.pfm"), size_t(in.tellg()) + 1 + 8 * 6 * 3 * sizeof(float));
+}
+
+TEST_F(CommandTest, SeveralFilesAndStandardInputAreOneScene) {
+    Result files = Command("--outfile a.pfm camera.pbrt world.pbrt", dir);
+    ASSERT_EQ(files.status, 0) << files.output;
+    Result stdinFile = Command("--outfile b.pfm camera.pbrt - < world.pbrt", dir);
+    ASSERT_EQ(stdinFile.status, 0) << stdinFile.output;
+    Result whole = Command("--outfile c.pfm - < scene.pbrt", dir);
+    ASSERT_EQ(whole.status, 0) << whole.output;
+    auto bytes = [&](const char *name) {
+        std::ifstream in(dir / name, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    // The same scene and seed: the same image, bit for bit.
+    EXPECT_EQ(bytes("a.pfm"), bytes("c.pfm"));
+    EXPECT_EQ(bytes("b.pfm"), bytes("c.pfm"));
+}
+
+TEST_F(CommandTest, AnImageErrorNamesTheSceneLineThatAskedForIt) {
+    Write("cut.png", std::string("\x89PNG\r\n\x1a\n", 8));
+    Write("textured.pbrt", std::string(kCamera) +
+                               "WorldBegin\nLightSource \"infinite\" \"rgb L\" [1 1 1]\n"
+                               "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"cut.png\"\n"
+                               "Material \"diffuse\" \"texture reflectance\" \"t\"\n"
+                               "Shape \"sphere\"\n");
+    Result run = Command("textured.pbrt", dir);
+    EXPECT_EQ(run.status, 1);
+    EXPECT_NE(run.output.find("textured.pbrt:6:"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("cut.png"), std::string::npos) << run.output;
+}
+
+TEST_F(CommandTest, ATimeLimitSaysItStoppedAndHowFar) {
+    Write("long.pbrt", std::string("Film \"rgb\" \"integer xresolution\" 32 \"integer yresolution\" 32\n"
+                                   "Sampler \"independent\" \"integer pixelsamples\" 100000000\n") + kWorld);
+    Result run = Command("--time-limit 0.5 --outfile long.exr long.pbrt", dir);
+    EXPECT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("time limit of 0.5 s: wrote long.exr:"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("of 100000000 samples per pixel"), std::string::npos) << run.output;
+}
+
+TEST_F(CommandTest, APbrtV3SceneSaysHowToUpgrade) {
+    Write("v3.pbrt", "Film \"image\"\nWorldBegin\n");
+    Result run = Command("v3.pbrt", dir);
+    EXPECT_EQ(run.status, 1);
+    EXPECT_NE(run.output.find("pbrt --upgrade"), std::string::npos) << run.output;
+}
+
+}  // namespace
