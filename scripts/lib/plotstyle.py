@@ -78,6 +78,17 @@ def log_limits(values, pad=1.6):
     return min(values) / pad, max(values) * pad
 
 
+def label_short_log_axis(axis):
+    """Labels the minor ticks (2, 3, 5 x 10^k) of a log axis that spans two decades or less,
+    where the decades alone leave one label or none."""
+    from matplotlib.ticker import FuncFormatter, LogLocator
+    low, high = axis.get_view_interval()
+    if low > 0 and high / low <= 100:
+        axis.set_minor_locator(LogLocator(subs=(2, 3, 5)))
+        axis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+        axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+
+
 def legend_beside(fig, axes_list, handles=None, labels=None, title=None, fontsize=8):
     """One legend for the figure, off the data: in the first unused panel of the grid when there
     is one (axes_list has hidden axes), otherwise to the right of the figure (saved with

@@ -186,7 +186,7 @@ def plot_relmse(series, path, title=None):
     colour and marker (plotstyle; hollow markers, so that series drawn on each other both show),
     one legend beside the panels."""
     plt = _pyplot()
-    from plotstyle import legend_beside, log_limits, series_styles
+    from plotstyle import label_short_log_axis, legend_beside, log_limits, series_styles
     scenes = sorted(series)
     keys = sorted({k for by_key in series.values() for k in by_key}, key=str)
     styles = series_styles(keys)
@@ -204,6 +204,7 @@ def plot_relmse(series, path, title=None):
         ylim = log_limits([p[2] for pts in series[scene].values() for p in pts], pad=1.4)
         if ylim:
             ax.set_ylim(*ylim)
+            label_short_log_axis(ax.yaxis)
         ax.set(title=scene, xlabel="render time [s]" if timed else "samples per pixel",
                ylabel="relMSE (mean over seeds)")
         if not timed:
@@ -225,7 +226,7 @@ def plot_efficiency(ratios, baselines, path, title=None):
     """Efficiency relative to the baseline series, a group of bars per scene, log scale with
     limits that hold every bar (and 1, the baseline), the legend beside the axes."""
     plt = _pyplot()
-    from plotstyle import log_limits, series_styles
+    from plotstyle import label_short_log_axis, log_limits, series_styles
     scenes = sorted(ratios)
     keys = sorted({k for by_key in ratios.values() for k in by_key}, key=str)
     styles = series_styles(keys)
@@ -243,6 +244,7 @@ def plot_efficiency(ratios, baselines, path, title=None):
     ax.set_yscale("log")
     low, high = log_limits(values + [1.0], pad=2.0)
     ax.set_ylim(low, high)
+    label_short_log_axis(ax.yaxis)
     ax.set_xticks(range(len(scenes)), scenes, rotation=15)
     ax.set_xlim(-0.5, len(scenes) - 0.5)
     bases = sorted({label(b) for b in baselines.values()})
