@@ -54,9 +54,14 @@ def main():
         left += max(0.0, 0.085 * len(args.title) - fig_w) / 2
         fig_w = max(fig_w, 0.085 * len(args.title))
     fig = plt.figure(figsize=(fig_w, fig_h), dpi=dpi)
-    ax = fig.add_axes((left / fig_w, 0.1 / fig_h, width / dpi / fig_w, height / dpi / fig_h))
+    # The axes one pixel wider than the render on every side, for a thin frame (a render may be
+    # white to its edges) that covers none of its pixels.
+    ax = fig.add_axes(((left - 1 / dpi) / fig_w, (0.1 - 1 / dpi) / fig_h,
+                       (width + 2) / dpi / fig_w, (height + 2) / dpi / fig_h))
     ax.imshow(image, interpolation="nearest")
-    for spine in ax.spines.values():  # a thin frame: a render may be white to its edges
+    ax.set_xlim(-1.5, width + 0.5)
+    ax.set_ylim(height + 0.5, -1.5)
+    for spine in ax.spines.values():
         spine.set(color="0.75", linewidth=0.5)
     ax.set_xticks([x for x, _ in columns], [t for _, t in columns], fontsize=9)
     ax.set_yticks([y for y, _ in rows], [t for _, t in rows], fontsize=9)
