@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """Renders side by side, each labelled (docs/img/port_pbrt_v4_side_by_side.png, port_pbrt_v3.png).
 
-    /usr/bin/python3 scripts/plot_side_by_side.py OUT.png LABEL=IMAGE [LABEL=IMAGE ...] [--title T]
-    /usr/bin/python3 scripts/plot_side_by_side.py OUT.png --split IMAGE LABEL [LABEL ...] [--title T]
+    /usr/bin/python3 scripts/plot_side_by_side.py OUT.png LABEL=IMAGE [LABEL=IMAGE ...]
+                                                  [--title T]
+    /usr/bin/python3 scripts/plot_side_by_side.py OUT.png --split IMAGE LABEL [LABEL ...]
+                                                  [--title T]
 
 The first form puts the images (EXR, shown clamped and sRGB-encoded as pbrt_ext writes a PNG, or
 8-bit PNG) left to right under their labels; the second cuts one image already side by side into
@@ -22,7 +24,8 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("out")
     parser.add_argument("panels", nargs="+", metavar="LABEL=IMAGE (or LABEL with --split)")
-    parser.add_argument("--split", metavar="IMAGE", help="one image to cut into the labelled columns")
+    parser.add_argument("--split", metavar="IMAGE",
+                        help="one image to cut into the labelled columns")
     parser.add_argument("--title")
     args = parser.parse_args()
     labels = [p.split("=", 1)[0].replace("\\n", "\n") for p in args.panels]
