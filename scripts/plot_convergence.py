@@ -6,7 +6,8 @@
 
 Writes into FOLDER (default: the JSON's folder)
   convergence_relmse.png      relMSE against render time, log-log, one panel per scene, one line
-                              per fabric sampler x path strategy;
+                              per path strategy x fabric sampler, each its own colour and marker
+                              (scripts/lib/plotstyle.py), the legend beside the panels;
   convergence_efficiency.png  efficiency ratios: each fabric sampler against uniform (under MIS),
                               MIS against BSDF-only and light-only (with the best sampler);
 and prints Markdown tables: the spp each fabric sampler needs for the relMSE of "best", MIS's
@@ -30,6 +31,7 @@ import matplotlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "lib"))
 from convergencefit import efficiency, fit_c, reference_floor  # noqa: E402
+from plotstyle import label_short_log_axis, legend_beside, log_limits, series_styles  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend choice)
@@ -77,23 +79,27 @@ def plot_relmse(series, path):
     scenes = sorted(series)
     cols = 2
     rows = (len(scenes) + cols - 1) // cols
-    fig, axes = plt.subplots(rows, cols, figsize=(6 * cols, 4.5 * rows), squeeze=False)
-    colors = dict(zip(SAMPLERS, ["tab:gray", "tab:blue", "tab:orange", "tab:green"]))
-    styles = dict(zip(STRATEGIES, [":", "--", "-"]))
+    fig, axes = plt.subplots(rows, cols, figsize=(5.5 * cols, 4.2 * rows), squeeze=False)
+    # (strategy, sampler): a line style per strategy, a hue and marker per sampler (plotstyle).
+    keys = [(t, s) for t in STRATEGIES for s in SAMPLERS]
+    keys += sorted({(t, s) for by_key in series.values() for s, t in by_key} - set(keys))
+    styles = series_styles(keys)
     for ax, scene in zip(axes.flat, scenes):
-        for (sampler, strategy), points in sorted(series[scene].items()):
-            ax.loglog([p[1] for p in points], [p[2] for p in points], marker="o", markersize=3,
-                      color=colors.get(sampler), linestyle=styles.get(strategy),
-                      label=f"{sampler} / {strategy}")
+        for (sampler, strategy), points in sorted(series[scene].items(),
+                                                  key=lambda kv: (kv[0][1], kv[0][0])):
+            style = styles[(strategy, sampler)]
+            ax.loglog([p[1] for p in points], [p[2] for p in points], marker=style["marker"],
+                      markersize=5, fillstyle="none", color=style["color"],
+                      linestyle=style["linestyle"], label=f"{strategy} / {sampler}")
         ax.set_title(scene)
         ax.set_xlabel("render time [s]")
         ax.set_ylabel("relMSE")
         ax.grid(True, which="both", alpha=0.3)
     for ax in list(axes.flat)[len(scenes):]:
         ax.axis("off")
-    axes.flat[0].legend(fontsize=7, ncol=2)
+    legend_beside(fig, list(axes.flat))
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    fig.savefig(path, dpi=110, bbox_inches="tight")
     plt.close(fig)
 
 
@@ -123,18 +129,23 @@ def plot_efficiency(fits, path):
     fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 4.5))
     for ax, (title, bars) in zip(axes, panels):
         width = 0.8 / len(bars)
+        values = []
         for i, (label, key, baseline) in enumerate(bars):
             ratios = [ratio(fits, scene, key, baseline, EFFICIENCY) for scene in scenes]
             ax.bar([j + (i - (len(bars) - 1) / 2) * width for j in range(len(scenes))], ratios,
                    width, label=label)
+            values += ratios
         ax.axhline(1, color="black", linewidth=0.8)
         ax.set_yscale("log")
+        ax.set_ylim(*log_limits(values + [1.0], pad=2.0))
+        label_short_log_axis(ax.yaxis)
         ax.set_xticks(range(len(scenes)), scenes, rotation=15)
         ax.set_ylabel("efficiency ratio")
         ax.set_title(title)
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.22), ncol=len(bars),
+                  frameon=False)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    fig.savefig(path, dpi=110, bbox_inches="tight")
     plt.close(fig)
 
 

@@ -7,14 +7,21 @@ Writes into the output folder
                  baseline series, efficiency relative to the baseline at each spp (where
                  low-discrepancy samplers beat 1 / spp, no single c fits), the fabric samplers'
                  uniform : paper : best where they vary, the cost per task, and the failures;
-  relmse.png     relMSE against render time, log-log, a panel per scene, a line per series;
-  efficiency.png efficiency relative to the baseline series, per scene;
+  relmse.png     relMSE against render time, log-log, a panel per scene, a line per series
+                 (its own colour and marker, scripts/lib/plotstyle.py; one legend beside the
+                 panels);
+  efficiency.png efficiency relative to the baseline series, a group of bars per scene;
   functions.png  with [functions]: each sampler's mean squared error against the sample count,
                  log-log, a panel per test function (report.md has their table),
 and prints report.md.
+
+replot (scripts/study replot REPORT.md) makes relmse.png and efficiency.png again from a
+report.md's tables alone, for a study whose database is gone: relMSE then against spp, as the
+report does not keep the seconds of each point.
 """
 import math
 import os
+import re
 import statistics
 from collections import defaultdict
 
@@ -149,54 +156,160 @@ def failure_lines(rows):
     return lines + [""]
 
 
+def efficiency_ratios(series, dims, fits, study):
+    """{scene: {key: efficiency / the baseline's}} and {scene: the baseline's key}."""
+    ratios, baselines = {}, {}
+    for scene, by_key in series.items():
+        c_of = fits[scene]
+        base = baselines[scene] = baseline_key(study, dims, by_key)
+        ratios[scene] = {key: efficiency(c_of[key], pts) / efficiency(c_of[base], by_key[base])
+                         for key, pts in by_key.items()}
+    return ratios, baselines
+
+
 def plot(series, dims, fits, study, out):
+    ratios, baselines = efficiency_ratios(series, dims, fits, study)
+    plot_relmse(series, os.path.join(out, "relmse.png"), study.name)
+    plot_efficiency(ratios, baselines, os.path.join(out, "efficiency.png"), study.name)
+
+
+def _pyplot():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    return plt
+
+
+def plot_relmse(series, path, title=None):
+    """relMSE against render time (against spp where the points have no seconds, as those read
+    back from a report.md have not), log-log, a panel per scene, a line per series with its own
+    colour and marker (plotstyle; hollow markers, so that series drawn on each other both show),
+    one legend beside the panels."""
+    plt = _pyplot()
+    from plotstyle import label_short_log_axis, legend_beside, log_limits, series_styles
     scenes = sorted(series)
-    cols = min(2, len(scenes))
-    rows = (len(scenes) + cols - 1) // cols
-    fig, axes = plt.subplots(rows, cols, figsize=(6 * cols, 4.5 * rows), squeeze=False)
-    # A colour per value of the last choice that varies, a line style per value of the first.
     keys = sorted({k for by_key in series.values() for k in by_key}, key=str)
-    colours = {v: f"C{i % 10}" for i, v in enumerate(dict.fromkeys(k[-1] for k in keys if k))}
-    firsts = list(dict.fromkeys(k[0] for k in keys if len(k) > 1))
-    styles = dict(zip(firsts, ["-", "--", ":", "-."] * 4))
-    hatches = dict(zip(firsts, ["", "//", "..", "xx"] * 4))
+    styles = series_styles(keys)
+    timed = all(sec is not None for by_key in series.values() for pts in by_key.values()
+                for _, sec, _ in pts)
+    cols = min(3 if len(scenes) > 4 else 2, len(scenes))
+    rows = (len(scenes) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(4.6 * cols, 3.9 * rows), squeeze=False)
     for ax, scene in zip(axes.flat, scenes):
         for key, pts in sorted(series[scene].items(), key=lambda kv: str(kv[0])):
-            ax.loglog([p[1] for p in pts], [p[2] for p in pts], marker="o", markersize=3,
-                      label=label(key), color=colours.get(key[-1] if key else None),
-                      linestyle=styles.get(key[0], "-") if len(key) > 1 else "-")
-        ax.set(title=scene, xlabel="render time [s]", ylabel="relMSE (mean over seeds)")
+            style = styles[key]
+            ax.loglog([p[1] if timed else p[0] for p in pts], [p[2] for p in pts],
+                      marker=style["marker"], markersize=5, fillstyle="none", linewidth=1.2,
+                      color=style["color"], linestyle=style["linestyle"], label=label(key))
+        ylim = log_limits([p[2] for pts in series[scene].values() for p in pts], pad=1.4)
+        if ylim:
+            ax.set_ylim(*ylim)
+            label_short_log_axis(ax.yaxis)
+        ax.set(title=scene, xlabel="render time [s]" if timed else "samples per pixel",
+               ylabel="relMSE (mean over seeds)")
+        if not timed:
+            counts = sorted({p[0] for pts in series[scene].values() for p in pts})
+            ax.set_xticks(counts, [str(n) for n in counts])
+            ax.minorticks_off()
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
     for ax in list(axes.flat)[len(scenes):]:
         ax.axis("off")
+    legend_beside(fig, list(axes.flat))
+    if title:
+        fig.suptitle(f"{title}: relMSE against {'render time' if timed else 'spp'}")
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "relmse.png"), dpi=110)
+    fig.savefig(path, dpi=100, bbox_inches="tight")
     plt.close(fig)
 
-    fig, ax = plt.subplots(figsize=(max(6, 1.5 * len(scenes) + 3), 4.5))
-    width = 0.8 / max(1, len(keys))
+
+def plot_efficiency(ratios, baselines, path, title=None):
+    """Efficiency relative to the baseline series, a group of bars per scene, log scale with
+    limits that hold every bar (and 1, the baseline), the legend beside the axes."""
+    plt = _pyplot()
+    from plotstyle import label_short_log_axis, log_limits, series_styles
+    scenes = sorted(ratios)
+    keys = sorted({k for by_key in ratios.values() for k in by_key}, key=str)
+    styles = series_styles(keys)
+    fig, ax = plt.subplots(figsize=(max(6.0, 0.16 * len(keys) * len(scenes) + 2), 4.2))
+    width = 0.84 / max(1, len(keys))
+    values = []
     for i, key in enumerate(keys):
-        ratios = []
-        for scene in scenes:
-            by_key, c_of = series[scene], fits[scene]
-            base = baseline_key(study, dims, by_key)
-            ratios.append(efficiency(c_of[key], by_key[key]) / efficiency(c_of[base], by_key[base])
-                          if key in by_key else float("nan"))
-        ax.bar([j + (i - (len(keys) - 1) / 2) * width for j in range(len(scenes))], ratios, width,
-               label=label(key), color=colours.get(key[-1] if key else None),
-               hatch=hatches.get(key[0], "") if len(key) > 1 else "", edgecolor="white")
+        heights = [ratios[scene].get(key, float("nan")) for scene in scenes]
+        values += heights
+        style = styles[key]
+        ax.bar([j + (i - (len(keys) - 1) / 2) * width for j in range(len(scenes))], heights, width,
+               label=label(key), color=style["color"], hatch=style["hatch"],
+               edgecolor="white", linewidth=0.4)
     ax.axhline(1, color="black", linewidth=0.8)
     ax.set_yscale("log")
+    low, high = log_limits(values + [1.0], pad=2.0)
+    ax.set_ylim(low, high)
+    label_short_log_axis(ax.yaxis)
     ax.set_xticks(range(len(scenes)), scenes, rotation=15)
-    ax.set_ylabel("efficiency / baseline's")
-    ax.legend(fontsize=7, ncol=min(4, len(keys)), loc="upper center", bbox_to_anchor=(0.5, -0.18))
+    ax.set_xlim(-0.5, len(scenes) - 0.5)
+    bases = sorted({label(b) for b in baselines.values()})
+    ax.set_ylabel(f"efficiency / {', '.join(bases)}'s\n(efficiency: 1 / (relMSE x seconds))")
+    ax.set_title(f"{title + ': ' if title else ''}efficiency relative to the baseline")
+    ax.grid(True, axis="y", which="major", alpha=0.3)
+    ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5), frameon=False)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "efficiency.png"), dpi=110, bbox_inches="tight")
+    fig.savefig(path, dpi=100, bbox_inches="tight")
     plt.close(fig)
+
+
+def read_report(path):
+    """The scene tables of a report.md this module wrote: ({scene: {key: [(spp, None, relMSE)]}},
+    {scene: {key: efficiency / baseline}}, {scene: baseline key}). The seconds per point are not
+    in the report, so plots made from it have spp on their x axis."""
+    series, ratios, baselines = {}, {}, {}
+    scene = header = None
+    with open(path) as f:
+        for line in f:
+            line = line.rstrip("\n")
+            heading = re.match(r"^### (\S+) \(baseline: (.*)\)$", line)
+            if heading:
+                scene, header = heading.group(1), None
+                baselines[scene] = unlabel(heading.group(2))
+                continue
+            if line.startswith("#"):
+                scene = header = None
+                continue
+            if scene is None or not line.startswith("|") or line.startswith("|---"):
+                continue
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            if header is None:
+                header = cells
+                continue
+            row = dict(zip(header, cells))
+            key = unlabel(row["series"])
+            points = [(int(name.split()[1]), None, float(value)) for name, value in row.items()
+                      if re.fullmatch(r"relMSE \d+", name) and value != "–"]
+            series.setdefault(scene, {})[key] = sorted(points)
+            if row.get("efficiency / baseline", "–") != "–":
+                ratios.setdefault(scene, {})[key] = float(row["efficiency / baseline"])
+    return series, ratios, baselines
+
+
+def unlabel(text):
+    """label's inverse."""
+    return () if text == "the scene's" else tuple(text.split(" / "))
+
+
+def replot(report_path, out):
+    """relmse.png (against spp) and efficiency.png from a report.md's tables, for a study whose
+    database is gone."""
+    series, ratios, baselines = read_report(report_path)
+    if not series:
+        print(f"{report_path}: no scene tables")
+        return 1
+    os.makedirs(out, exist_ok=True)
+    name = os.path.splitext(os.path.basename(report_path))[0]
+    plot_relmse(series, os.path.join(out, "relmse.png"), name)
+    if ratios:
+        plot_efficiency(ratios, baselines, os.path.join(out, "efficiency.png"), name)
+    print(f"wrote {os.path.join(out, 'relmse.png')}"
+          + (f" and {os.path.join(out, 'efficiency.png')}" if ratios else ""))
+    return 0
 
 
 MARKERS = "osD^v<>Ph*"

@@ -20,7 +20,9 @@ import unittest
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(REPO, "scripts", "lib"))
-import studymodel  # noqa: E402  (after the path)
+import plotstyle  # noqa: E402  (after the path)
+import studymodel  # noqa: E402
+import studyreport  # noqa: E402
 import studytasks  # noqa: E402
 
 BINARY = os.environ.get("PBRT_EXT_CLI", os.path.join(REPO, "build", "release", "pbrt_ext", "cmd",
@@ -294,6 +296,66 @@ class MakespanModel(unittest.TestCase):
         tasks = [("s0", 1, 10, []), ("s1", 1, 10, []), ("merge", 0.1, 10, ["s0", "s1"])]
         tasks += [(f"c{i}", 1, 0, ["merge"]) for i in range(4)]
         self.assertGreaterEqual(studymodel.replay(tasks, 4, 0.2), 0.42)
+
+REPORT_MD = """# Study tiny
+
+### cylinder_r0.1 (baseline: mis / best)
+
+| series | relMSE 4 | relMSE 16 | c | c / baseline | efficiency / baseline | eff. 4 / baseline | eff. 16 / baseline |
+|---|---|---|---|---|---|---|---|
+| bsdf / best | 53.1 | 13.5 | 216 | 568 | 0.00263 | 0.00 | 0.00 |
+| mis / best | 0.107 | 0.0243 | 0.38 | 1 | 1 | 1.00 | 1.00 |
+| mis / paper | 0.0979 | – | 0.388 | 1.02 | 1.3 | 1.13 | – |
+
+## Cost per task
+
+| not | a scene table |
+|---|---|
+"""
+
+
+class ReportPlots(unittest.TestCase):
+    """The plots' styles and a report.md read back (scripts/study replot); no renders."""
+
+    def test_every_series_has_its_own_colour_and_marker(self):
+        grouped = [(a, b) for a in ("bsdf", "light", "mis")
+                   for b in ("uniform", "cosine", "paper", "best")]
+        for keys in (grouped, [f"s{i}" for i in range(7)], [f"s{i}" for i in range(25)],
+                     [("a", f"x{i}", "b") for i in range(5)]):
+            styles = plotstyle.series_styles(keys)
+            self.assertEqual(len({styles[k]["color"] for k in keys}), len(keys), keys)
+            self.assertEqual(len({(styles[k]["color"], styles[k]["marker"]) for k in keys}),
+                             len(keys), keys)
+        # Grouped: one marker per sampler, one line style per strategy.
+        styles = plotstyle.series_styles(grouped)
+        self.assertEqual(styles[("bsdf", "paper")]["marker"], styles[("mis", "paper")]["marker"])
+        self.assertNotEqual(styles[("bsdf", "paper")]["linestyle"],
+                            styles[("mis", "paper")]["linestyle"])
+
+    def test_log_limits_hold_every_value(self):
+        low, high = plotstyle.log_limits([0.00075, 1.06, float("nan"), 0, None])
+        self.assertLess(low, 0.00075)
+        self.assertGreater(high, 1.06)
+        self.assertIsNone(plotstyle.log_limits([0, float("nan")]))
+
+    def test_replot_reads_the_scene_tables_of_a_report(self):
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "tiny.md")
+            with open(path, "w") as f:
+                f.write(REPORT_MD)
+            series, ratios, baselines = studyreport.read_report(path)
+            self.assertEqual(list(series), ["cylinder_r0.1"])
+            self.assertEqual(series["cylinder_r0.1"][("bsdf", "best")],
+                             [(4, None, 53.1), (16, None, 13.5)])
+            self.assertEqual(series["cylinder_r0.1"][("mis", "paper")], [(4, None, 0.0979)])
+            self.assertEqual(ratios["cylinder_r0.1"][("mis", "paper")], 1.3)
+            self.assertEqual(baselines["cylinder_r0.1"], ("mis", "best"))
+            done = subprocess.run([STUDY, "replot", path, "--out", os.path.join(folder, "out")],
+                                  capture_output=True, text=True, timeout=TIMEOUT)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            for name in ("relmse.png", "efficiency.png"):
+                self.assertGreater(os.path.getsize(os.path.join(folder, "out", name)), 1000)
+
 
 class RenderDistributed(StudyCase):
     def test_parts_merge_into_the_single_render(self):
