@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -17,6 +18,9 @@ struct SampleRange {
     int Count() const { return last - first; }
     friend bool operator==(const SampleRange &, const SampleRange &) = default;
 };
+
+// Per-pixel time and ray counts (film/pixelstatistics.h).
+struct PixelStatistics;
 
 struct RenderOptions {
     int nThreads = 0;  // 0: all cores
@@ -36,6 +40,14 @@ struct RenderOptions {
     // [0, samples per pixel) and not be empty (std::invalid_argument otherwise), and the
     // integrator's samples must be independent of each other: not sppm.
     std::optional<SampleRange> samples = std::nullopt;
+    // Called by the tile integrators after each wave, with the samples every pixel has taken;
+    // the film then holds their image, splats scaled. pbrt-v4's --write-partial-images,
+    // --mse-reference-image and --display-server look at the image here. sppm, mlt and function
+    // render no waves and never call it.
+    std::function<void(int samplesPerPixel)> afterWave = nullptr;
+    // Filled by the tile integrators when set (sized to the film's pixel bounds); sppm, mlt and
+    // function leave it as it is.
+    PixelStatistics *pixelStatistics = nullptr;
 };
 
 struct RenderStatistics {

@@ -10,10 +10,11 @@ namespace pbrt {
 SceneBuilder::SceneBuilder(Camera camera, RGBFilm film, Sampler sampler)
     : scene(new Scene{EmbreeAggregate(), {}, {}, {}, {}, LightSampler(UniformLightSampler({})),
                       std::move(camera), {}, false, false, {}, std::move(film), std::move(sampler),
-                      {}, {}, -1}) {}
+                      {}, {}, -1, {}}) {}
 
-int SceneBuilder::AddMaterial(Material material) {
+int SceneBuilder::AddMaterial(Material material, std::string description) {
     scene->materials.push_back(std::move(material));
+    scene->materialDescriptions.push_back(std::move(description));
     return int(scene->materials.size()) - 1;
 }
 

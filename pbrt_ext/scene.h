@@ -159,6 +159,8 @@ class Scene {
     // vacuum) starts every camera ray.
     std::vector<Medium> media;
     int cameraMedium = -1;
+    // Per material, what and where it is in the scene file, for the user (--pixelmaterial).
+    std::vector<std::string> materialDescriptions;
 };
 
 // Emission of an area light attached to a shape (pbrt-v4's AreaLightSource "diffuse").
@@ -180,7 +182,8 @@ class SceneBuilder {
 
     const Camera &GetCamera() const { return scene->camera; }
     // Materials are referenced by the index this returns.
-    int AddMaterial(Material material);
+    // description: what and where it is in the scene file ("Material \"diffuse\" at f:3:1").
+    int AddMaterial(Material material, std::string description = {});
 
     // Shapes, each with a material (-1: an interface, invisible to shading), optional emission,
     // and an optional alpha texture that cuts the shape out where it is below 1 (pbrt-v4's

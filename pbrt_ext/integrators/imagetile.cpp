@@ -1,5 +1,6 @@
 #include "pbrt_ext/integrators/imagetile.h"
 
+#include "pbrt_ext/film/pixelstatistics.h"
 #include "pbrt_ext/scene.h"
 #include "pbrt_ext/util/progressreporter.h"
 
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -57,16 +59,45 @@ int NextWaveSize(int waveSize, int samplesDone, double elapsed, double timeLimit
     return int(std::clamp(fits, 1.0, double(std::min(2 * waveSize, kMaxWaveSize))));
 }
 
+// While alive, times one pixel's samples and counts their rays, for --pixelstats; with no
+// statistics to fill, does nothing.
+class PixelStatisticsScope {
+  public:
+    PixelStatisticsScope(PixelStatistics *stats, Point2i p, const RayCounts &rays)
+        : stats(stats), p(p), rays(rays) {
+        if (stats) {
+            rays0 = Total();
+            start = std::chrono::steady_clock::now();
+        }
+    }
+    ~PixelStatisticsScope() {
+        if (!stats) return;
+        std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - start;
+        stats->Add(p, ms.count(), Total() - rays0);
+    }
+    PixelStatisticsScope(const PixelStatisticsScope &) = delete;
+    PixelStatisticsScope &operator=(const PixelStatisticsScope &) = delete;
+
+  private:
+    int64_t Total() const { return rays.closest + rays.shadow; }
+    PixelStatistics *stats;
+    Point2i p;
+    const RayCounts &rays;
+    int64_t rays0 = 0;
+    std::chrono::steady_clock::time_point start;
+};
+
 // Samples [first, last) of every pixel of the tile, each pixel's in index order.
 template <typename Integrator>
 void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile, int first,
-                int last, ThreadCounts &counts) {
+                int last, ThreadCounts &counts, PixelStatistics *stats) {
     // Embree traverses fastest without denormals (its documentation's advice for every rendering
     // thread); set per tile since TBB owns the threads.
     _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
     _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
     Sampler sampler = scene.sampler;  // per tile: samplers carry per-pixel state
-    for (Point2i p : tile)
+    for (Point2i p : tile) {
+        PixelStatisticsScope pixelStatistics(stats, p, counts.rays);
         for (int i = first; i < last; ++i) {
             sampler.StartPixelSample(p, i);
             // pbrt-v4's order: the wavelengths take the first dimension, then the camera sample.
@@ -96,6 +127,12 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
             }
             scene.film.AddSample(p, L, lambda, cs.filterWeight, visible ? &*visible : nullptr);
         }
+    }
+}
+
+// Splats came from one light path per camera sample, spread over the pixels.
+Float SplatScale(const Bounds2i &pixels, int64_t cameraSamples) {
+    return Float(double(pixels.Area()) / double(cameraSamples));
 }
 
 }  // namespace
@@ -118,12 +155,17 @@ RenderStatistics RenderTiles(Scene &scene, const TileIntegrator &integrator, Sam
             if (cancellable && options.Cancelled())
                 return;
             std::visit([&](const auto &concrete) {
-                RenderTile(scene, concrete, tiles[t], waveStart, waveEnd, counts.local());
+                RenderTile(scene, concrete, tiles[t], waveStart, waveEnd, counts.local(),
+                           options.pixelStatistics);
             }, integrator);
             tileSamples[t] = waveEnd;
             progress.Update(int64_t(tiles[t].Area()) * (waveEnd - waveStart));
         });
         waveStart = waveEnd;
+        if (options.afterWave && !options.Cancelled()) {
+            scene.film.SetSplatScale(SplatScale(pixels, int64_t(pixels.Area()) * (waveEnd - samples.first)));
+            options.afterWave(waveEnd - samples.first);
+        }
         const double elapsed = progress.ElapsedSeconds();
         const bool timeUp = options.timeLimitSeconds > 0 && elapsed >= options.timeLimitSeconds;
         if (options.Cancelled() || timeUp)
@@ -140,9 +182,8 @@ RenderStatistics RenderTiles(Scene &scene, const TileIntegrator &integrator, Sam
     stats.cancelled = stats.samplesPerPixel < samples.Count() && options.Cancelled();
     for (size_t t = 0; t < tiles.size(); ++t)
         stats.cameraSamples += int64_t(tiles[t].Area()) * (tileSamples[t] - samples.first);
-    // Splats came from one light path per camera sample, spread over the pixels.
     if (stats.cameraSamples > 0) {
-        Float splatScale = Float(double(pixels.Area()) / double(stats.cameraSamples));
+        Float splatScale = SplatScale(pixels, stats.cameraSamples);
         scene.film.SetSplatScale(splatScale);
         if (const BDPTIntegrator *bdpt = std::get_if<BDPTIntegrator>(&integrator))
             bdpt->WriteStrategyImages(splatScale);

@@ -30,7 +30,7 @@ class MaterialResolver {
         auto [it, inserted] = anonymous.try_emplace(shape.materialIndex, -1);
         if (inserted) {
             const SceneEntity &m = scene.materials[shape.materialIndex];
-            it->second = Create(m, m.name);
+            it->second = Create(m, m.name, "Material \"" + m.name + "\"");
         }
         return it->second;
     }
@@ -46,16 +46,18 @@ class MaterialResolver {
             std::string type = m.parameters.GetOneString("type", "");
             if (type.empty())
                 throw ParseError(m.loc, "named material \"" + name + "\" needs a \"string type\"");
-            it->second = Create(m, type);
+            it->second = Create(m, type, "MakeNamedMaterial \"" + name + "\" (\"" + type + "\")");
         }
         return it->second;
     }
 
     // A mix names two materials, which only this resolver can turn into indices.
-    int Create(const SceneEntity &m, const std::string &type) {
+    // what: the directive as the user wrote it, for Scene::materialDescriptions.
+    int Create(const SceneEntity &m, const std::string &type, const std::string &what) {
+        const std::string description = what + " at " + m.loc.ToString();
         if (type != "mix") {
             std::optional<Material> material = CreateMaterial(m, type, overrides, textures);
-            return material ? builder.AddMaterial(std::move(*material)) : -1;
+            return material ? builder.AddMaterial(std::move(*material), description) : -1;
         }
         const ParameterDictionary &p = m.parameters;
         std::vector<std::string> names = p.GetStringArray("materials");
@@ -65,7 +67,7 @@ class MaterialResolver {
         MixMaterial mix{{Named(names[0], *p.Loc("materials")), Named(names[1], *p.Loc("materials"))},
                         textures.Float(p, "amount", 0.5f)};
         p.ReportUnused();
-        return builder.AddMaterial(std::move(mix));
+        return builder.AddMaterial(std::move(mix), description);
     }
 
     const SceneDescription &scene;
