@@ -153,6 +153,9 @@ const std::vector<OptionSpec> &Options() {
                  throw CommandLineError("--displacement-edge-scale: must be positive");
              c.overrides.displacementEdgeScale = Float(s);
          }},
+        {"display-server", "host:port", G::PbrtV4,
+         "stream the image to tev at host:port after every wave (a warning if it is not there)",
+         [](CommandLine &c, const std::string &v) { c.displayServer = v; }},
         {"force-diffuse", nullptr, G::PbrtV4,
          "every BSDF becomes a diffuse one with the same reflectance (rho)",
          [](CommandLine &c, const std::string &v) {
@@ -160,6 +163,12 @@ const std::vector<OptionSpec> &Options() {
          }},
         {"help", nullptr, G::PbrtV4, "print this text",
          [](CommandLine &c, const std::string &) { c.help = true; }},
+        {"mse-reference-image", "file", G::PbrtV4,
+         "with --mse-reference-out: the image each wave's MSE is measured against",
+         [](CommandLine &c, const std::string &v) { c.mseReferenceImage = v; }},
+        {"mse-reference-out", "file", G::PbrtV4,
+         "write \"<samples per pixel> <MSE>\" after every wave to this file",
+         [](CommandLine &c, const std::string &v) { c.mseReferenceOut = v; }},
         {"nthreads", "n", G::PbrtV4, "render threads (default: 0, every core)",
          [](CommandLine &c, const std::string &v) { c.overrides.nThreads = Int("nthreads", v, 0); }},
         {"outfile", "file", G::PbrtV4,
@@ -171,12 +180,22 @@ const std::vector<OptionSpec> &Options() {
              auto p = List<int>("pixel", v, 2, "x,y");
              c.overrides.pixelBounds = Bounds2i(Point2i(p[0], p[1]), Point2i(p[0] + 1, p[1] + 1));
          }},
+        {"pixelmaterial", "x,y", G::PbrtV4,
+         "print what the ray through the pixel's centre hits, and the materials; no render",
+         [](CommandLine &c, const std::string &v) {
+             auto p = List<int>("pixelmaterial", v, 2, "x,y");
+             c.pixelMaterial = Point2i(p[0], p[1]);
+         }},
         {"pixelbounds", "x0,x1,y0,y1", G::PbrtV4,
          "render only these pixels; wins over --cropwindow (default: the film's)",
          [](CommandLine &c, const std::string &v) {
              auto p = List<int>("pixelbounds", v, 4, "x0,x1,y0,y1");
              c.overrides.pixelBounds = Bounds2i(Point2i(p[0], p[2]), Point2i(p[1], p[3]));
          }},
+        {"pixelstats", nullptr, G::PbrtV4,
+         "also write <outfile>-time.exr (milliseconds per pixel) and <outfile>-rays.exr (rays per "
+         "pixel), for path, volpath, bdpt and the other tile integrators",
+         [](CommandLine &c, const std::string &v) { c.pixelStats = FlagValue("pixelstats", v); }},
         {"quick", nullptr, G::PbrtV4,
          "a quarter of the resolution, 1 sample per pixel (mlt: 1/16 of its mutations and "
          "bootstrap)",
@@ -203,6 +222,19 @@ const std::vector<OptionSpec> &Options() {
          "render with volpath: the estimator pbrt-v4's wavefront integrator runs, in another "
          "order",
          [](CommandLine &c, const std::string &v) { c.wavefront = FlagValue("wavefront", v); }},
+        {"write-partial-images", nullptr, G::PbrtV4, "write the image after every wave",
+         [](CommandLine &c, const std::string &v) {
+             c.writePartialImages = FlagValue("write-partial-images", v);
+         }},
+        {"format", nullptr, G::PbrtV4, "print the scene reformatted to standard output; no render",
+         [](CommandLine &c, const std::string &v) {
+             if (FlagValue("format", v)) c.reformat = CommandLine::Reformat::Format;
+         }},
+        {"toply", nullptr, G::PbrtV4,
+         "as --format, with every triangle mesh written to mesh_NNNNN.ply in the current folder",
+         [](CommandLine &c, const std::string &v) {
+             if (FlagValue("toply", v)) c.reformat = CommandLine::Reformat::ToPLY;
+         }},
         {"log-file", "file", G::PbrtV4, "append messages to this file instead of standard error",
          [](CommandLine &c, const std::string &v) { c.logFile = v; }},
         {"log-level", "level", G::PbrtV4,
@@ -215,18 +247,6 @@ const std::vector<OptionSpec> &Options() {
              else throw CommandLineError("--log-level: \"" + v + "\": expected verbose, error or fatal");
          }},
         // pbrt-v4's that pbrt_ext does not have yet: an error, never a silent render.
-        {"display-server", "addr:port", G::NotYet, "stream the image to tev", NotYet("display-server")},
-        {"mse-reference-image", "file", G::NotYet, "reference for MSE per sample count",
-         NotYet("mse-reference-image")},
-        {"mse-reference-out", "file", G::NotYet, "file of MSE per sample count",
-         NotYet("mse-reference-out")},
-        {"pixelmaterial", "x,y", G::NotYet, "print the material seen at a pixel",
-         NotYet("pixelmaterial")},
-        {"pixelstats", nullptr, G::NotYet, "per-pixel statistics images", NotYet("pixelstats")},
-        {"write-partial-images", nullptr, G::NotYet, "write the image while rendering",
-         NotYet("write-partial-images")},
-        {"format", nullptr, G::NotYet, "print the scene reformatted", NotYet("format")},
-        {"toply", nullptr, G::NotYet, "--format, meshes to PLY", NotYet("toply")},
         {"upgrade", nullptr, G::NotYet, "print a pbrt-v3 scene in pbrt-v4's format",
          NotYet("upgrade")},
         // Ours.
@@ -396,6 +416,8 @@ CommandLine ParseCommandLine(const std::vector<std::string> &args) {
         option->apply(c, value);
     }
     if (c.wavefront && !c.overrides.integrator) c.overrides.integrator = "volpath";
+    if (c.mseReferenceImage.empty() != c.mseReferenceOut.empty())
+        throw CommandLineError("--mse-reference-image and --mse-reference-out go together");
     return c;
 }
 

@@ -33,6 +33,14 @@ struct CommandLine {
     LogLevel logLevel = LogLevel::Error;
     std::string logFile;
     bool wavefront = false;               // pbrt-v4's wavefront integrator: volpath here
+    // What to do between waves (cmd/waveobservers.h).
+    bool writePartialImages = false;
+    std::string mseReferenceImage, mseReferenceOut;
+    std::string displayServer;            // host:port of tev
+    // pbrt-v4's --format and --toply: print the scene (scene/formatter.h) instead of rendering.
+    enum class Reformat { None, Format, ToPLY } reformat = Reformat::None;
+    std::optional<Point2i> pixelMaterial;  // print what this pixel sees instead of rendering
+    bool pixelStats = false;               // write per-pixel time and ray images
 };
 
 // A command line that can't be followed; what() names the option and what it expects.

@@ -8,10 +8,14 @@
 #include "pbrt_ext/cmd/commandline.h"
 #include "pbrt_ext/cmd/interrupt.h"
 #include "pbrt_ext/cmd/merge.h"
+#include "pbrt_ext/cmd/pixelmaterial.h"
+#include "pbrt_ext/cmd/waveobservers.h"
 #include "pbrt_ext/film/filmslice.h"
+#include "pbrt_ext/film/pixelstatistics.h"
 #include "pbrt_ext/images/image.h"
 #include "pbrt_ext/options.h"
 #include "pbrt_ext/render.h"
+#include "pbrt_ext/scene/formatter.h"
 #include "pbrt_ext/scene/sceneloader.h"
 #include "pbrt_ext/util/log.h"
 
@@ -22,6 +26,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -113,6 +118,24 @@ void WriteRender(const Scene &scene, const std::string &sceneName, std::optional
     scene.film.WriteImage(metadata);
 }
 
+// --pixelstats: <outfile>-time.exr and <outfile>-rays.exr, each value in R, G and B, placed in
+// the full image as the film's own image is.
+void WritePixelStatistics(const PixelStatistics &stats, const RGBFilm &film) {
+    const std::string base = std::filesystem::path(film.GetFilename()).replace_extension().string();
+    const Vector2i size = stats.pixels.Diagonal();
+    ImageMetadata metadata;
+    metadata.fullResolution = film.FullResolution();
+    metadata.pixelBounds = stats.pixels;
+    for (const auto &[name, values] : {std::pair{"-time.exr", &stats.milliseconds}, {"-rays.exr", &stats.rays}}) {
+        Image image(Point2i(size.x, size.y));
+        for (int y = 0; y < size.y; ++y)
+            for (int x = 0; x < size.x; ++x)
+                for (int c = 0; c < 3; ++c)
+                    image.SetChannel(Point2i(x, y), c, Float((*values)[size_t(y) * size.x + x]));
+        image.Write(base + name, metadata);
+    }
+}
+
 // What stopped the render before all its samples, for the user and the EXR; empty if nothing.
 std::string StoppedEarly(const RenderStatistics &stats, const RenderOptions &options, int asked) {
     if (stats.cancelled) return "interrupted";
@@ -126,15 +149,22 @@ std::string StoppedEarly(const RenderStatistics &stats, const RenderOptions &opt
 int RenderAndWriteImage(Scene &scene, const CommandLine &cmd, const std::vector<SceneFile> &files) {
     const RenderOverrides &o = cmd.overrides;
     const std::string &outFile = scene.film.GetFilename();
-    if (std::optional<std::string> error = ImageWriteError(outFile)) {
+    // The function integrator writes a table of errors there, not an image.
+    const bool writesImage = scene.integratorOptions.type != IntegratorType::Function;
+    if (std::optional<std::string> error = writesImage ? ImageWriteError(outFile) : OutputFolderError(outFile)) {
         Fail(*error + "; nothing rendered");
-        return kExitBadInput;
+        return cmd.overrides.outFile.empty() ? kExitBadInput : kExitBadCommandLine;
     }
     if (!cmd.samples.empty() && !IsEXRFilename(outFile)) {
         Fail("--samples: the slice's sums need an EXR file, not \"" + outFile + "\"");
         return kExitBadCommandLine;
     }
     RenderOptions options{o.nThreads, o.quiet, o.timeLimitSeconds, &RenderInterrupt()};
+    WaveObservers observers(cmd, scene);
+    std::optional<PixelStatistics> pixelStatistics;
+    if (cmd.pixelStats) options.pixelStatistics = &pixelStatistics.emplace(scene.film.PixelBounds());
+    if (observers.Any())
+        options.afterWave = [&](int samplesPerPixel) { observers.AfterWave(samplesPerPixel); };
     SampleRange samples;
     try {
         if (!cmd.samples.empty())
@@ -161,6 +191,7 @@ int RenderAndWriteImage(Scene &scene, const CommandLine &cmd, const std::vector<
     }
     RenderStatistics stats = Render(scene, options);
     EndInterruptibleRender();
+    observers.AfterRender();
     // The function integrator has written its error table; the film holds nothing.
     if (scene.integratorOptions.type == IntegratorType::Function) {
         if (!o.quiet)
@@ -170,6 +201,7 @@ int RenderAndWriteImage(Scene &scene, const CommandLine &cmd, const std::vector<
     const std::string sceneName = files.size() == 1 ? files[0].filename : files[0].filename + " ...";
     const std::string stopped = StoppedEarly(stats, options, samples.Count());
     WriteRender(scene, sceneName, options.samples, identity, stats, stopped);
+    if (pixelStatistics) WritePixelStatistics(*pixelStatistics, scene.film);
     if (o.stats)
         std::printf("%s", stats.ToString().c_str());
     std::string more;
@@ -210,19 +242,31 @@ int Main(const CommandLine &cmd) {
         std::printf("pbrt_ext %s\n", PBRT_EXT_VERSION);
         return kExitSuccess;
     }
+    // Before the scene loads, which may take long; its extension once the integrator is known.
     if (!cmd.overrides.outFile.empty())
-        if (std::optional<std::string> error = ImageWriteError(cmd.overrides.outFile)) {
+        if (std::optional<std::string> error = OutputFolderError(cmd.overrides.outFile)) {
             Fail("--outfile: " + *error);
             return kExitBadCommandLine;
         }
     if (!SetUpLogging(cmd)) return kExitBadCommandLine;
     std::vector<SceneFile> files = SceneFiles(cmd);
+    if (cmd.reformat != CommandLine::Reformat::None) {
+        std::optional<std::string> plyFolder;
+        if (cmd.reformat == CommandLine::Reformat::ToPLY) plyFolder = ".";
+        FormattingTarget formatter(std::cout, plyFolder);
+        ParseFiles(&formatter, files);
+        return kExitSuccess;
+    }
     if (cmd.wavefront && !cmd.overrides.quiet)
         std::fprintf(stderr, "pbrt_ext: --wavefront: rendering with volpath, the estimator of "
                              "pbrt-v4's wavefront integrator (it runs the same paths in another order)\n");
     InstallInterruptHandler();
     std::unique_ptr<Scene> scene = LoadScene(files, cmd.overrides);
     LogVerbose(cmd, *scene);
+    if (cmd.pixelMaterial) {
+        PrintPixelMaterial(*scene, *cmd.pixelMaterial, std::cout);
+        return kExitSuccess;
+    }
     return RenderAndWriteImage(*scene, cmd, files);
 }
 

@@ -98,6 +98,11 @@ std::optional<std::string> ImageWriteError(const std::string &path) {
             return std::string(e.what());
         }
     }
+    return OutputFolderError(path);
+}
+
+std::optional<std::string> OutputFolderError(const std::string &path) {
+    namespace fs = std::filesystem;
     fs::path folder = fs::path(path).parent_path();
     if (folder.empty()) folder = ".";
     std::error_code ec;

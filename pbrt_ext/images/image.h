@@ -176,6 +176,8 @@ bool IsEXRFilename(const std::string &path);
 // Why Image::Write could not write path, for a check before the work that makes the image: no
 // writer for its extension, or a folder that is missing or not writable. None when it can.
 std::optional<std::string> ImageWriteError(const std::string &path);
+// The folder part alone: path's folder is missing or not writable. None when it is.
+std::optional<std::string> OutputFolderError(const std::string &path);
 
 // keptBytesPerPixel: what the caller will make of each pixel, checked with the read against the
 // memory budget (util/resourcelimits.h). Throws std::runtime_error("<path>: error: <what>"), also

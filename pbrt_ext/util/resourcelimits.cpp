@@ -47,7 +47,7 @@ DefaultBudget ComputeDefaultBudget() {
     uint64_t physical = PhysicalMemory();
     std::optional<uint64_t> cgroup = CgroupMemoryLimit();
     if (cgroup && *cgroup < physical) return {*cgroup, "the memory limit of this process's cgroup"};
-    return {physical, "this machine's physical memory"};
+    return {physical, "the physical memory"};
 }
 
 // Read once: neither changes while a scene loads.

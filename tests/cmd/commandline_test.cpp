@@ -2,15 +2,24 @@
 // command itself, spawned, for its exit statuses, messages, output-file check, standard input and
 // several scene files.
 #include "pbrt_ext/cmd/commandline.h"
+#include "pbrt_ext/images/image.h"
 
 #include <gtest/gtest.h>
 
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 using namespace pbrt;
@@ -109,6 +118,16 @@ TEST(CommandLine, AnUnknownOptionSuggestsTheNearest) {
     std::string far = ErrorOf({"--zzzzzzzzzzzz"});
     EXPECT_NE(far.find("unknown option"), std::string::npos);
     EXPECT_EQ(far.find("did you mean"), std::string::npos);
+}
+
+TEST(CommandLine, MSEReferenceAndOutputGoTogether) {
+    EXPECT_NE(ErrorOf({"--mse-reference-image", "ref.exr"}).find("go together"), std::string::npos);
+    CommandLine c = Parse({"--mse-reference-image", "ref.exr", "--mse-reference-out", "mse.txt",
+                           "--write-partial-images", "--display-server", "localhost:14158"});
+    EXPECT_EQ(c.mseReferenceImage, "ref.exr");
+    EXPECT_EQ(c.mseReferenceOut, "mse.txt");
+    EXPECT_TRUE(c.writePartialImages);
+    EXPECT_EQ(c.displayServer, "localhost:14158");
 }
 
 TEST(CommandLine, GpuOptionsAreRefusedWithTheReason) {
@@ -265,6 +284,234 @@ TEST_F(CommandTest, APbrtV3SceneSaysHowToUpgrade) {
     Result run = Command("v3.pbrt", dir);
     EXPECT_EQ(run.status, 1);
     EXPECT_NE(run.output.find("pbrt --upgrade"), std::string::npos) << run.output;
+}
+
+// A PFM's float RGB, top row first, as the command wrote it.
+std::vector<float> ReadPFM(const fs::path &path, int *width, int *height) {
+    std::ifstream in(path, std::ios::binary);
+    std::string magic, scale;
+    in >> magic >> *width >> *height >> scale;
+    in.get();
+    std::vector<float> rows(3 * size_t(*width) * size_t(*height));
+    in.read(reinterpret_cast<char *>(rows.data()), std::streamsize(rows.size() * sizeof(float)));
+    std::vector<float> image(rows.size());
+    const size_t row = 3 * size_t(*width);
+    for (int y = 0; y < *height; ++y)  // the file's first row is the bottom one
+        std::copy_n(rows.begin() + ptrdiff_t((*height - 1 - y) * row), row, image.begin() + ptrdiff_t(y * row));
+    return image;
+}
+
+TEST_F(CommandTest, MSEAgainstAReferenceAfterEveryWave) {
+    // Seen from outside the sphere: every sample's wavelengths make its noise.
+    Write("big.pbrt", std::string("LookAt 0 0 3  0 0 0  0 1 0\nCamera \"perspective\"\n"
+                                  "Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 6\n"
+                                  "Sampler \"independent\" \"integer pixelsamples\" 129\n") + kWorld);
+    ASSERT_EQ(Command("--quiet --outfile ref.pfm big.pbrt", dir).status, 0);
+    Result run = Command("--quiet --seed 3 --outfile out.pfm --mse-reference-image ref.pfm "
+                         "--mse-reference-out mse.txt big.pbrt", dir);
+    ASSERT_EQ(run.status, 0) << run.output;
+    // Waves of 1, 64 and 64 samples.
+    std::ifstream in(dir / "mse.txt");
+    std::vector<std::pair<int, double>> rows;
+    for (std::pair<int, double> r; in >> r.first >> r.second;) rows.push_back(r);
+    ASSERT_EQ(rows.size(), 3u);
+    EXPECT_EQ(rows[0].first, 1);
+    EXPECT_EQ(rows[1].first, 65);
+    EXPECT_EQ(rows[2].first, 129);
+    // The last row is the written image's MSE against the reference.
+    int w = 0, h = 0;
+    std::vector<float> out = ReadPFM(dir / "out.pfm", &w, &h), ref = ReadPFM(dir / "ref.pfm", &w, &h);
+    double mse = 0;
+    for (size_t i = 0; i < out.size(); ++i) mse += (double(out[i]) - ref[i]) * (double(out[i]) - ref[i]);
+    mse /= double(out.size());
+    EXPECT_GT(mse, 0);
+    EXPECT_NEAR(rows[2].second, mse, 1e-6 * mse);
+    // A reference of another size is an error before the render.
+    Write("small.pbrt", std::string("Film \"rgb\" \"integer xresolution\" 4 \"integer yresolution\" 4\n") + kWorld);
+    Result small = Command("--outfile s.pfm --mse-reference-image ref.pfm --mse-reference-out m.txt small.pbrt", dir);
+    EXPECT_EQ(small.status, 1);
+    EXPECT_NE(small.output.find("8 x 6 pixels; the render is 4 x 4"), std::string::npos) << small.output;
+    EXPECT_FALSE(fs::exists(dir / "s.pfm"));
+}
+
+TEST_F(CommandTest, PartialImagesAreWrittenAfterEveryWave) {
+    Write("long.pbrt", std::string("Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 6\n"
+                                   "Sampler \"independent\" \"integer pixelsamples\" 100000000\n") + kWorld);
+    // Looked for while the render runs (in the background of the shell), after its first waves.
+    auto existsMidway = [&](const std::string &flags, const char *file) {
+        // The command line is "cd DIR && pbrt_ext ... &": the test runs outside DIR.
+        Result run = Command(flags + " --time-limit 3 --outfile " + file + " long.pbrt & sleep 1.5; "
+                             "test -f '" + (dir / file).string() + "' && echo MIDWAY; wait", dir);
+        return run.output.find("MIDWAY") != std::string::npos;
+    };
+    EXPECT_TRUE(existsMidway("--quiet --write-partial-images", "partial.exr"));
+    EXPECT_FALSE(existsMidway("--quiet", "final.exr"));
+    EXPECT_TRUE(fs::exists(dir / "final.exr"));
+}
+
+// tev's side of the protocol (cmd/tevclient.h), decoding what one connection brings: the image
+// it creates and the channel values it updates, by pixel.
+struct TevImage {
+    std::string name;
+    int width = 0, height = 0;
+    std::vector<std::string> channels;
+    std::map<std::string, std::vector<float>> values;
+    int updates = 0;
+    std::string error;
+};
+
+TevImage DecodeTev(const std::string &bytes) {
+    TevImage image;
+    size_t at = 0;
+    auto read = [&](auto *value) {
+        std::memcpy(value, bytes.data() + at, sizeof(*value));
+        at += sizeof(*value);
+    };
+    auto readString = [&] {
+        std::string s(bytes.c_str() + at);
+        at += s.size() + 1;
+        return s;
+    };
+    while (at + 5 <= bytes.size()) {
+        const size_t start = at;
+        uint32_t length = 0;
+        uint8_t type = 0, grabFocus = 0;
+        read(&length);
+        read(&type);
+        read(&grabFocus);
+        if (start + length > bytes.size()) {
+            image.error = "a packet runs past the stream's end";
+            return image;
+        }
+        if (type == 4) {
+            image.name = readString();
+            int32_t w, h, n;
+            read(&w), read(&h), read(&n);
+            image.width = w, image.height = h;
+            for (int c = 0; c < n; ++c) image.channels.push_back(readString());
+            for (const std::string &c : image.channels) image.values[c].assign(size_t(w) * h, -1);
+        } else if (type == 3) {
+            std::string name = readString(), channel = readString();
+            int32_t x, y, w, h;
+            read(&x), read(&y), read(&w), read(&h);
+            if (name != image.name || !image.values.count(channel) || x < 0 || y < 0 ||
+                x + w > image.width || y + h > image.height) {
+                image.error = "an update outside the created image";
+                return image;
+            }
+            for (int j = 0; j < h; ++j)
+                for (int i = 0; i < w; ++i) read(&image.values[channel][size_t(y + j) * image.width + x + i]);
+            ++image.updates;
+        } else {
+            image.error = "packet type " + std::to_string(type);
+            return image;
+        }
+        if (at != start + length) {
+            image.error = "a packet's length is not its contents'";
+            return image;
+        }
+    }
+    if (at != bytes.size()) image.error = "trailing bytes";
+    return image;
+}
+
+// A TCP socket bound to a free loopback port (-1 if that fails); *port is the port.
+int BoundLoopbackSocket(int *port) {
+    int s = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t size = sizeof(address);
+    if (s < 0 || ::bind(s, reinterpret_cast<sockaddr *>(&address), sizeof(address)) != 0 ||
+        ::getsockname(s, reinterpret_cast<sockaddr *>(&address), &size) != 0)
+        return -1;
+    *port = ntohs(address.sin_port);
+    return s;
+}
+
+TEST_F(CommandTest, TheDisplayServerGetsTheImageAsTevDecodesIt) {
+    int port = 0;
+    int server = BoundLoopbackSocket(&port);
+    ASSERT_GE(server, 0);
+    ASSERT_EQ(::listen(server, 1), 0);
+    std::string received;
+    std::thread viewer([&] {
+        int connection = ::accept(server, nullptr, nullptr);
+        if (connection < 0) return;
+        char buffer[65536];
+        for (ssize_t n; (n = ::read(connection, buffer, sizeof(buffer))) > 0;) received.append(buffer, size_t(n));
+        ::close(connection);
+    });
+    Write("wide.pbrt", std::string("Film \"rgb\" \"integer xresolution\" 200 \"integer yresolution\" 3\n"
+                                   "Sampler \"independent\" \"integer pixelsamples\" 2\n") + kWorld);
+    Result run = Command("--quiet --outfile tev.pfm --display-server 127.0.0.1:" + std::to_string(port) +
+                         " wide.pbrt", dir);
+    viewer.join();
+    ::close(server);
+    ASSERT_EQ(run.status, 0) << run.output;
+    TevImage tev = DecodeTev(received);
+    ASSERT_EQ(tev.error, "");
+    EXPECT_EQ(tev.name, "tev.pfm");
+    ASSERT_EQ(tev.width, 200);
+    ASSERT_EQ(tev.height, 3);
+    EXPECT_EQ(tev.channels, (std::vector<std::string>{"R", "G", "B"}));
+    // Two tiles across, three channels, after each of the two waves and at the end.
+    EXPECT_EQ(tev.updates, 2 * 3 * 3);
+    // What tev shows last is the image written.
+    int w = 0, h = 0;
+    std::vector<float> written = ReadPFM(dir / "tev.pfm", &w, &h);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 200; ++x)
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(tev.values[tev.channels[c]][size_t(y) * 200 + x], written[3 * (size_t(y) * 200 + x) + c])
+                    << x << ", " << y << ", " << c;
+}
+
+TEST_F(CommandTest, AMissingDisplayServerIsAWarning) {
+    // A port nothing listens on: bound, never listened to.
+    int port = 0;
+    int s = BoundLoopbackSocket(&port);
+    ASSERT_GE(s, 0);
+    Result run = Command("--outfile x.pfm --display-server 127.0.0.1:" + std::to_string(port) + " scene.pbrt", dir);
+    ::close(s);
+    EXPECT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("cannot connect"), std::string::npos) << run.output;
+    EXPECT_TRUE(fs::exists(dir / "x.pfm"));
+}
+
+TEST_F(CommandTest, PixelMaterialPrintsWhatThePixelSeesAndWhere) {
+    // The camera sits at the sphere's centre: its ray meets the sphere from inside, 0.5 away.
+    Result run = Command("--pixelmaterial 4,3 scene.pbrt", dir);
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_NE(run.output.find("Intersection depth 1"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("Distance from camera: 0.5"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("Material: Material \"diffuse\" at scene.pbrt:6:1"), std::string::npos) << run.output;
+    EXPECT_EQ(run.output.find("Intersection depth 2"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(dir / "pbrt.exr"));  // no render
+    Result outside = Command("--pixelmaterial 8,0 scene.pbrt", dir);
+    EXPECT_EQ(outside.status, 1);
+    EXPECT_NE(outside.output.find("outside the 8 x 6 film"), std::string::npos) << outside.output;
+}
+
+TEST_F(CommandTest, PixelStatsCountEveryRayOfTheRender) {
+    Result run = Command("--pixelstats --stats --outfile stats.exr scene.pbrt", dir);
+    ASSERT_EQ(run.status, 0) << run.output;
+    long long total = -1;
+    size_t at = run.output.find("\nrays ");
+    ASSERT_NE(at, std::string::npos) << run.output;
+    std::sscanf(run.output.c_str() + at, "\nrays %lld", &total);
+    Image rays = Image::Read((dir / "stats-rays.exr").string());
+    Image time = Image::Read((dir / "stats-time.exr").string());
+    ASSERT_EQ(rays.Resolution(), Point2i(8, 6));
+    ASSERT_EQ(time.Resolution(), Point2i(8, 6));
+    double sum = 0;
+    for (int y = 0; y < 6; ++y)
+        for (int x = 0; x < 8; ++x) {
+            EXPECT_GE(rays.GetChannel(Point2i(x, y), 0), 2) << x << ", " << y;  // a camera ray a sample
+            EXPECT_GT(time.GetChannel(Point2i(x, y), 0), 0) << x << ", " << y;
+            sum += rays.GetChannel(Point2i(x, y), 0);
+        }
+    EXPECT_EQ(sum, double(total));
 }
 
 }  // namespace

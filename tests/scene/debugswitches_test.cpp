@@ -66,12 +66,13 @@ TEST(Switches, TheScenesOptionsWinOverTheCommandLine) {
     RenderOverrides o;
     o.disablePixelJitter = true;
     o.seed = 1;
-    std::unique_ptr<Scene> scene = Load(std::string("Option \"bool disablepixeljitter\" false\n"
-                                                    "Option \"disablewavelengthjitter\" true\n"
-                                                    "Option \"bool forcediffuse\" true\n"
-                                                    "Option \"string rendercoordsys\" \"camera\"\n"
-                                                    "Option \"bool wavefront\" true\n") + kScene,
-                                        o);
+    std::string text = "Option \"bool disablepixeljitter\" false\n"
+                       "Option \"disablewavelengthjitter\" true\n"
+                       "Option \"bool forcediffuse\" true\n"
+                       "Option \"string rendercoordsys\" \"camera\"\n"
+                       "Option \"bool wavefront\" true\n";
+    text.append(kScene);
+    std::unique_ptr<Scene> scene = Load(text, o);
     EXPECT_TRUE(scene->switches.pixelJitter);
     EXPECT_FALSE(scene->switches.wavelengthJitter);
     EXPECT_TRUE(scene->switches.forceDiffuse);
@@ -119,7 +120,6 @@ TEST(ForceDiffuse, ADiffuseBSDFKeepsItsReflectance) {
     si.wo = Normalize(Vector3f(0.3f, -0.2f, 1));
     si.shading.n = Normal3f(0, 0, 1);
     si.shading.dpdu = Vector3f(1, 0, 0);
-    SampledWavelengths lambda = SampledWavelengths::SampleVisible(0.5f);
     SampledSpectrum R(0.3f);
     BSDF diffuse = DiffuseEquivalent(BSDF(si.shading.n, si.shading.dpdu, DiffuseBxDF(R)), si);
     Vector3f wi = Normalize(Vector3f(-0.5f, 0.1f, 0.7f));

@@ -112,7 +112,7 @@ TEST_F(ResourceLimits, DefaultBudgetIsThePhysicalMemoryOrTheCgroupLimit) {
     EXPECT_NE(error.find(fmt::format("; expected at most the memory budget of {} bytes (", expected)),
               std::string::npos) << error;
     EXPECT_TRUE(error.ends_with(limited ? ", the memory limit of this process's cgroup)"
-                                        : ", this machine's physical memory)")) << error;
+                                        : ", the physical memory)")) << error;
 }
 
 // cgroup v2 writes "max" for no limit; v1 writes a byte count (a huge one for no limit).

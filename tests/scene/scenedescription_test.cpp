@@ -562,7 +562,7 @@ TEST(SceneDescriptionErrors, ExactMessages) {
         {"Option \"fast\" true",
          "s.pbrt:1:1: error: unknown option \"fast\"; expected one of disablepixeljitter, "
          "disabletexturefiltering, disablewavelengthjitter, displacementedgescale, forcediffuse, "
-         "msereferenceimage, msereferenceout, pixelstats, seed, wavefront"},
+         "msereferenceimage, msereferenceout, pixelstats, rendercoordsys, seed, wavefront"},
         {"Option \"disablepixeljitter\" 1",
          "s.pbrt:1:1: error: option \"disablepixeljitter\": bad value \"1\"; expected true or "
          "false"},
