@@ -29,7 +29,7 @@ std::string Normalize(std::string_view name) {
 // One option: its name, the placeholder of its value (none for a flag), its help and default,
 // and what it does to the command line.
 struct OptionSpec {
-    enum class Group { PbrtV4, Ours, NotYet, NotApplicable };
+    enum class Group { PbrtV4, Ours, NotApplicable };
     const char *name;
     const char *value;  // nullptr: a flag
     Group group;
@@ -105,13 +105,6 @@ std::function<void(CommandLine &, const std::string &)> NotApplicable(const char
                                                                       const char *why) {
     return [name, why](CommandLine &, const std::string &) {
         throw CommandLineError(fmt::format("--{} is not supported: {}", name, why));
-    };
-}
-
-// One that it lacks so far.
-std::function<void(CommandLine &, const std::string &)> NotYet(const char *name) {
-    return [name](CommandLine &, const std::string &) {
-        throw CommandLineError(fmt::format("--{} is not implemented in pbrt_ext yet (docs/cli.md)", name));
     };
 }
 
@@ -235,6 +228,11 @@ const std::vector<OptionSpec> &Options() {
          [](CommandLine &c, const std::string &v) {
              if (FlagValue("toply", v)) c.reformat = CommandLine::Reformat::ToPLY;
          }},
+        {"upgrade", nullptr, G::PbrtV4,
+         "print a pbrt-v3 scene upgraded to pbrt-v4's format, with pbrt-v4's rules; no render",
+         [](CommandLine &c, const std::string &v) {
+             if (FlagValue("upgrade", v)) c.reformat = CommandLine::Reformat::Upgrade;
+         }},
         {"log-file", "file", G::PbrtV4, "append messages to this file instead of standard error",
          [](CommandLine &c, const std::string &v) { c.logFile = v; }},
         {"log-level", "level", G::PbrtV4,
@@ -246,9 +244,6 @@ const std::vector<OptionSpec> &Options() {
              else if (v == "fatal") c.logLevel = LogLevel::Fatal;
              else throw CommandLineError("--log-level: \"" + v + "\": expected verbose, error or fatal");
          }},
-        // pbrt-v4's that pbrt_ext does not have yet: an error, never a silent render.
-        {"upgrade", nullptr, G::NotYet, "print a pbrt-v3 scene in pbrt-v4's format",
-         NotYet("upgrade")},
         // Ours.
         {"version", nullptr, G::Ours, "print the version and exit",
          [](CommandLine &c, const std::string &) { c.version = true; }},
@@ -439,10 +434,6 @@ std::string CommandLineHelp() {
             text += fmt::format("{:<34}{}\n", left, o.help);
         }
     }
-    text += "\npbrt-v4's options not implemented yet (an error, not ignored):\n ";
-    for (const OptionSpec &o : Options())
-        if (o.group == G::NotYet) text += fmt::format(" --{}", o.name);
-    text += "\n";
     text += "\nNot supported: --gpu, --gpu-device, --interactive, --fullscreen (pbrt_ext renders on "
             "the CPU),\n--debugstart, --log-utilization.\n"
             "\nExit status: 0 success, 1 bad input or failed render, 2 bad command line, 130 "

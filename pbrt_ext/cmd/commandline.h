@@ -37,8 +37,9 @@ struct CommandLine {
     bool writePartialImages = false;
     std::string mseReferenceImage, mseReferenceOut;
     std::string displayServer;            // host:port of tev
-    // pbrt-v4's --format and --toply: print the scene (scene/formatter.h) instead of rendering.
-    enum class Reformat { None, Format, ToPLY } reformat = Reformat::None;
+    // pbrt-v4's --format, --toply and --upgrade: print the scene (scene/formatter.h) instead of
+    // rendering it.
+    enum class Reformat { None, Format, ToPLY, Upgrade } reformat = Reformat::None;
     std::optional<Point2i> pixelMaterial;  // print what this pixel sees instead of rendering
     bool pixelStats = false;               // write per-pixel time and ray images
 };

@@ -253,7 +253,7 @@ int Main(const CommandLine &cmd) {
     if (cmd.reformat != CommandLine::Reformat::None) {
         std::optional<std::string> plyFolder;
         if (cmd.reformat == CommandLine::Reformat::ToPLY) plyFolder = ".";
-        FormattingTarget formatter(std::cout, plyFolder);
+        FormattingTarget formatter(std::cout, plyFolder, cmd.reformat == CommandLine::Reformat::Upgrade);
         ParseFiles(&formatter, files);
         return kExitSuccess;
     }
@@ -264,7 +264,12 @@ int Main(const CommandLine &cmd) {
     std::unique_ptr<Scene> scene = LoadScene(files, cmd.overrides);
     LogVerbose(cmd, *scene);
     if (cmd.pixelMaterial) {
-        PrintPixelMaterial(*scene, *cmd.pixelMaterial, std::cout);
+        try {
+            PrintPixelMaterial(*scene, *cmd.pixelMaterial, std::cout);
+        } catch (const std::runtime_error &e) {
+            Fail(e.what());
+            return kExitBadInput;
+        }
         return kExitSuccess;
     }
     return RenderAndWriteImage(*scene, cmd, files);

@@ -1,10 +1,13 @@
 #include "pbrt_ext/scene/formatter.h"
 
+#include "pbrt_ext/scene/upgrade.h"
+
 #include "pbrt_ext/util/atomicfile.h"
 #include "pbrt_ext/util/error.h"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 #include <cstdio>
@@ -112,7 +115,15 @@ std::optional<std::string> FormattingTarget::WritePLY(const ParsedParameterVecto
     return name;
 }
 
-void FormattingTarget::Shape(const std::string &name, ParsedParameterVector params, FileLoc loc) {
+void FormattingTarget::Entity(const char *directive, std::string name, ParsedParameterVector &params,
+                              const FileLoc &loc, UpgradeRule rule) {
+    if (upgrade) rule(name, params, loc);
+    Line(std::string(directive) + " " + QuotedString(name), params);
+}
+
+void FormattingTarget::Shape(const std::string &type, ParsedParameterVector params, FileLoc loc) {
+    std::string name = type;
+    if (upgrade) UpgradeShape(name, params, loc);
     if (name == "trianglemesh" && plyFolder)
         if (std::optional<std::string> ply = WritePLY(params, loc)) {
             ParsedParameterVector rest;
@@ -163,25 +174,26 @@ void FormattingTarget::TransformTimes(Float start, Float end, FileLoc) {
     Line("TransformTimes " + Numbers({start, end}));
 }
 void FormattingTarget::ColorSpace(const std::string &name, FileLoc) { Line("ColorSpace " + QuotedString(name)); }
-void FormattingTarget::PixelFilter(const std::string &name, ParsedParameterVector params, FileLoc) {
-    Line("PixelFilter " + QuotedString(name), params);
+void FormattingTarget::PixelFilter(const std::string &name, ParsedParameterVector params, FileLoc loc) {
+    Entity("PixelFilter", name, params, loc, UpgradePixelFilter);
 }
-void FormattingTarget::Film(const std::string &type, ParsedParameterVector params, FileLoc) {
-    Line("Film " + QuotedString(type), params);
+void FormattingTarget::Film(const std::string &type, ParsedParameterVector params, FileLoc loc) {
+    Entity("Film", type, params, loc, UpgradeFilm);
 }
-void FormattingTarget::Sampler(const std::string &name, ParsedParameterVector params, FileLoc) {
-    Line("Sampler " + QuotedString(name), params);
+void FormattingTarget::Sampler(const std::string &name, ParsedParameterVector params, FileLoc loc) {
+    Entity("Sampler", name, params, loc, UpgradeSampler);
 }
 void FormattingTarget::Accelerator(const std::string &name, ParsedParameterVector params, FileLoc) {
     Line("Accelerator " + QuotedString(name), params);
 }
-void FormattingTarget::Integrator(const std::string &name, ParsedParameterVector params, FileLoc) {
-    Line("Integrator " + QuotedString(name), params);
+void FormattingTarget::Integrator(const std::string &name, ParsedParameterVector params, FileLoc loc) {
+    Entity("Integrator", name, params, loc, UpgradeIntegrator);
 }
-void FormattingTarget::Camera(const std::string &name, ParsedParameterVector params, FileLoc) {
-    Line("Camera " + QuotedString(name), params);
+void FormattingTarget::Camera(const std::string &name, ParsedParameterVector params, FileLoc loc) {
+    Entity("Camera", name, params, loc, UpgradeCamera);
 }
-void FormattingTarget::MakeNamedMedium(const std::string &name, ParsedParameterVector params, FileLoc) {
+void FormattingTarget::MakeNamedMedium(const std::string &name, ParsedParameterVector params, FileLoc loc) {
+    if (upgrade) UpgradeMedium(params, loc);
     Line("MakeNamedMedium " + QuotedString(name), params);
 }
 void FormattingTarget::MediumInterface(const std::string &inside, const std::string &outside, FileLoc) {
@@ -203,23 +215,32 @@ void FormattingTarget::Attribute(const std::string &target, ParsedParameterVecto
     Line("Attribute " + QuotedString(target), params);
 }
 void FormattingTarget::Texture(const std::string &name, const std::string &type, const std::string &texname,
-                               ParsedParameterVector params, FileLoc) {
-    Line("Texture " + QuotedString(name) + " " + QuotedString(type) + " " + QuotedString(texname), params);
+                               ParsedParameterVector params, FileLoc loc) {
+    std::string upgraded = type;
+    if (upgrade) UpgradeTexture(upgraded, texname, params, loc);
+    Line("Texture " + QuotedString(name) + " " + QuotedString(upgraded) + " " + QuotedString(texname), params);
 }
-void FormattingTarget::Material(const std::string &name, ParsedParameterVector params, FileLoc) {
-    Line("Material " + QuotedString(name), params);
+void FormattingTarget::Material(const std::string &name, ParsedParameterVector params, FileLoc loc) {
+    Entity("Material", name, params, loc, UpgradeMaterial);
 }
-void FormattingTarget::MakeNamedMaterial(const std::string &name, ParsedParameterVector params, FileLoc) {
+void FormattingTarget::MakeNamedMaterial(const std::string &name, ParsedParameterVector params, FileLoc loc) {
+    if (upgrade) {
+        auto type = std::find_if(params.begin(), params.end(), [](const ParsedParameter &p) { return p.name == "type"; });
+        std::string upgraded = type != params.end() && type->strings.size() == 1 ? type->strings[0] : "";
+        UpgradeMaterial(upgraded, params, loc);  // may add and remove parameters: type is stale
+        for (ParsedParameter &p : params)
+            if (p.name == "type") p.strings = {upgraded};
+    }
     Line("MakeNamedMaterial " + QuotedString(name), params);
 }
 void FormattingTarget::NamedMaterial(const std::string &name, FileLoc) {
     Line("NamedMaterial " + QuotedString(name));
 }
-void FormattingTarget::LightSource(const std::string &name, ParsedParameterVector params, FileLoc) {
-    Line("LightSource " + QuotedString(name), params);
+void FormattingTarget::LightSource(const std::string &name, ParsedParameterVector params, FileLoc loc) {
+    Entity("LightSource", name, params, loc, UpgradeLight);
 }
-void FormattingTarget::AreaLightSource(const std::string &name, ParsedParameterVector params, FileLoc) {
-    Line("AreaLightSource " + QuotedString(name), params);
+void FormattingTarget::AreaLightSource(const std::string &name, ParsedParameterVector params, FileLoc loc) {
+    Entity("AreaLightSource", name, params, loc, UpgradeAreaLight);
 }
 void FormattingTarget::ReverseOrientation(FileLoc) { Line("ReverseOrientation"); }
 void FormattingTarget::ObjectBegin(const std::string &name, FileLoc) {

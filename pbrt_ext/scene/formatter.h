@@ -1,7 +1,8 @@
 // pbrt-v4's --format and --toply: a scene's directives printed back in pbrt-v4's syntax, one
 // directive a line, attribute and object blocks indented, Includes inlined (the parser follows
 // them), numbers in their shortest exact form, so that the printed scene is the same scene.
-// --toply also writes each "trianglemesh" to a binary PLY file and prints a "plymesh" naming it.
+// --toply also writes each "trianglemesh" to a binary PLY file and prints a "plymesh" naming it;
+// --upgrade rewrites pbrt-v3's directives as pbrt-v4's on the way (scene/upgrade.h).
 #pragma once
 
 #include "pbrt_ext/scene/parser.h"
@@ -14,9 +15,11 @@ namespace pbrt {
 
 class FormattingTarget final : public ParserTarget {
   public:
-    // plyFolder: where --toply writes mesh_00001.ply, ...; none: meshes stay inline.
-    FormattingTarget(std::ostream &out, std::optional<std::string> plyFolder = std::nullopt)
-        : out(out), plyFolder(std::move(plyFolder)) {}
+    // plyFolder: where --toply writes mesh_00001.ply, ...; none: meshes stay inline. upgrade:
+    // pbrt-v3's directives are rewritten as pbrt-v4's (--upgrade, scene/upgrade.h).
+    FormattingTarget(std::ostream &out, std::optional<std::string> plyFolder = std::nullopt,
+                     bool upgrade = false)
+        : out(out), plyFolder(std::move(plyFolder)), upgrade(upgrade) {}
 
     void Scale(Float sx, Float sy, Float sz, FileLoc loc) override;
     void Shape(const std::string &name, ParsedParameterVector params, FileLoc loc) override;
@@ -64,11 +67,17 @@ class FormattingTarget final : public ParserTarget {
   private:
     // One directive: its words (already quoted where they are strings), then its parameters.
     void Line(const std::string &words, const ParsedParameterVector &params = {});
+    // A directive naming its type (Film "rgb", Material "diffuse", ...), upgraded by rule first
+    // under --upgrade.
+    using UpgradeRule = void (*)(std::string &, ParsedParameterVector &, const FileLoc &);
+    void Entity(const char *directive, std::string name, ParsedParameterVector &params,
+                const FileLoc &loc, UpgradeRule rule);
     // --toply: the PLY file's name, or none to print the mesh inline (one with faceIndices).
     std::optional<std::string> WritePLY(const ParsedParameterVector &params, const FileLoc &loc);
 
     std::ostream &out;
     std::optional<std::string> plyFolder;
+    bool upgrade;
     int indent = 0;
     int meshes = 0;
 };
