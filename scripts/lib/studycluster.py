@@ -1,6 +1,6 @@
 """The Dask cluster a study or a distributed render runs on, and its progress bar.
 
-Without a scheduler address: a local cluster of worker processes on this machine, one per
+Without a scheduler address: a local cluster of worker processes on the local machine, one per
 render (each render has its own threads), started and stopped with the run. With
 --scheduler tcp://HOST:8786: any running Dask cluster (dask-scheduler plus dask-worker on each
 machine, or an SSH, SLURM or Kubernetes deployment); its workers need the binary, the scenes and
@@ -15,11 +15,16 @@ LIB = os.path.dirname(os.path.abspath(__file__))
 
 
 def local_cluster(workers):
-    """A cluster of `workers` processes on this machine, one thread each, quiet, its dashboard on
-    a free port (a fixed one would clash with a cluster already running)."""
+    """A cluster of `workers` processes on the local machine, one thread each, quiet, its
+    dashboard on a free port (a fixed one would clash with a cluster already running).
+
+    Its workers log only what is critical: a worker's heartbeat that races the shutdown of a
+    run that succeeded logs "Scheduler was unaware of this worker" as an error, and every real
+    failure reaches the user as its task's outcome (outcome_of) anyway."""
+    import logging
     from distributed import LocalCluster
     return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                        dashboard_address=":0", silence_logs=40)
+                        dashboard_address=":0", silence_logs=logging.CRITICAL)
 
 
 @contextlib.contextmanager
