@@ -147,6 +147,9 @@ struct RenderOverrides {
     bool disableWavelengthJitter = false;  // the same wavelengths for every sample
     bool disableTextureFiltering = false;  // point-sampled textures (no ray differentials)
     bool disableImageTextures = false;     // each image texture: its average
+    // What the command writes besides the image (a scene's Option directive can also ask):
+    std::string mseReferenceImage, mseReferenceOut;  // a '<spp> <MSE>' line after every wave
+    bool pixelStats = false;                          // <outfile>-time.exr and -rays.exr
 };
 
 // "uniform", "cosine", "paper", "truncatedsinphi" or "best"; throws std::invalid_argument otherwise.

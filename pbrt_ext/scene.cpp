@@ -9,7 +9,7 @@ namespace pbrt {
 
 SceneBuilder::SceneBuilder(Camera camera, RGBFilm film, Sampler sampler)
     : scene(new Scene{EmbreeAggregate(), {}, {}, {}, {}, LightSampler(UniformLightSampler({})),
-                      std::move(camera), {}, false, false, {}, std::move(film), std::move(sampler),
+                      std::move(camera), {}, false, false, {}, {}, std::move(film), std::move(sampler),
                       {}, {}, -1, {}}) {}
 
 int SceneBuilder::AddMaterial(Material material, std::string description) {

@@ -105,8 +105,8 @@ class Scene {
     std::optional<BSDF> GetBSDF(SurfaceInteraction &si, SampledWavelengths &lambda) const {
         int index = ResolveMaterial(si);
         if (index < 0) return std::nullopt;
-        BSDF bsdf = materials[index].GetBSDF(si, lambda);
-        return switches.forceDiffuse ? DiffuseEquivalent(bsdf, si) : bsdf;
+        if (!switches.forceDiffuse) return materials[index].GetBSDF(si, lambda);
+        return DiffuseEquivalent(materials[index].GetBSDF(si, lambda), si);
     }
     // The BSSRDF under a hit's surface, mixes resolved as GetBSDF resolves them; none unless its
     // material is a subsurface one.
@@ -148,6 +148,9 @@ class Scene {
     // Whether the camera or some instance moves: only then does a camera sample draw a time.
     bool hasMotion = false;
     RenderSwitches switches;
+    // The command line's options with the scene file's Option directives applied over them (the
+    // file wins, as in pbrt-v4's Options): what the command writes besides the image.
+    RenderOverrides options;
     // The wavelengths a camera sample carries, from its first dimension u.
     SampledWavelengths SampleWavelengths(Float u) const {
         return film.SampleWavelengths(switches.wavelengthJitter ? u : 0.5f);
@@ -233,6 +236,7 @@ class SceneBuilder {
 
     void SetIntegrator(IntegratorOptions options) { integratorOptions = options; }
     void SetSwitches(RenderSwitches switches) { scene->switches = switches; }
+    void SetOptions(RenderOverrides options) { scene->options = std::move(options); }
     // "bvh" (default), "bvh-pbrt-v4" (InfiniteLightChoice::PbrtV4), "power" or "uniform".
     void SetLightSampler(std::string name);
 

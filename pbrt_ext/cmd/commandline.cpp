@@ -1,6 +1,7 @@
 #include "pbrt_ext/cmd/commandline.h"
 
 #include "pbrt_ext/lights/lightsamplers.h"
+#include "pbrt_ext/util/text.h"
 
 #include <fmt/format.h>
 
@@ -17,14 +18,6 @@
 namespace pbrt {
 
 namespace {
-
-// pbrt-v4 matches option names ignoring case, '-' and '_'.
-std::string Normalize(std::string_view name) {
-    std::string n;
-    for (char c : name)
-        if (c != '-' && c != '_') n += char(std::tolower((unsigned char)c));
-    return n;
-}
 
 // One option: its name, the placeholder of its value (none for a flag), its help and default,
 // and what it does to the command line.
@@ -79,8 +72,8 @@ std::vector<T> List(const std::string &option, const std::string &text, size_t n
 
 // pbrt-v4's "--flag=true" / "--flag=false"; a bare flag is true.
 bool FlagValue(const std::string &option, const std::string &text) {
-    if (text.empty() || Normalize(text) == "true") return true;
-    if (Normalize(text) == "false") return false;
+    if (text.empty() || NormalizeOptionName(text) == "true") return true;
+    if (NormalizeOptionName(text) == "false") return false;
     throw CommandLineError(fmt::format("--{}: \"{}\": expected true or false", option, text));
 }
 
@@ -158,10 +151,10 @@ const std::vector<OptionSpec> &Options() {
          [](CommandLine &c, const std::string &) { c.help = true; }},
         {"mse-reference-image", "file", G::PbrtV4,
          "with --mse-reference-out: the image each wave's MSE is measured against",
-         [](CommandLine &c, const std::string &v) { c.mseReferenceImage = v; }},
+         [](CommandLine &c, const std::string &v) { c.overrides.mseReferenceImage = v; }},
         {"mse-reference-out", "file", G::PbrtV4,
          "write \"<samples per pixel> <MSE>\" after every wave to this file",
-         [](CommandLine &c, const std::string &v) { c.mseReferenceOut = v; }},
+         [](CommandLine &c, const std::string &v) { c.overrides.mseReferenceOut = v; }},
         {"nthreads", "n", G::PbrtV4, "render threads (default: 0, every core)",
          [](CommandLine &c, const std::string &v) { c.overrides.nThreads = Int("nthreads", v, 0); }},
         {"outfile", "file", G::PbrtV4,
@@ -188,7 +181,7 @@ const std::vector<OptionSpec> &Options() {
         {"pixelstats", nullptr, G::PbrtV4,
          "also write <outfile>-time.exr (milliseconds per pixel) and <outfile>-rays.exr (rays per "
          "pixel), for path, volpath, bdpt and the other tile integrators",
-         [](CommandLine &c, const std::string &v) { c.pixelStats = FlagValue("pixelstats", v); }},
+         [](CommandLine &c, const std::string &v) { c.overrides.pixelStats = FlagValue("pixelstats", v); }},
         {"quick", nullptr, G::PbrtV4,
          "a quarter of the resolution, 1 sample per pixel (mlt: 1/16 of its mutations and "
          "bootstrap)",
@@ -330,15 +323,9 @@ size_t ListLength(const OptionSpec &o) {
                : 1;
 }
 
-bool IsNumber(const std::string &text) {
-    double v;
-    auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    return !text.empty() && ec == std::errc() && ptr == text.data() + text.size();
-}
-
 const OptionSpec *Find(const std::string &name) {
     for (const OptionSpec &o : Options())
-        if (Normalize(o.name) == Normalize(name)) return &o;
+        if (NormalizeOptionName(o.name) == NormalizeOptionName(name)) return &o;
     return nullptr;
 }
 
@@ -362,9 +349,9 @@ size_t EditDistance(const std::string &a, const std::string &b) {
     const OptionSpec *nearest = nullptr;
     size_t best = std::numeric_limits<size_t>::max();
     for (const OptionSpec &o : Options()) {
-        std::string candidate = Normalize(o.name);
-        size_t d = EditDistance(Normalize(name), candidate);
-        if (candidate.rfind(Normalize(name), 0) == 0) d = std::min<size_t>(d, 1);
+        std::string candidate = NormalizeOptionName(o.name);
+        size_t d = EditDistance(NormalizeOptionName(name), candidate);
+        if (candidate.rfind(NormalizeOptionName(name), 0) == 0) d = std::min<size_t>(d, 1);
         if (d < best) best = d, nearest = &o;
     }
     std::string message = "unknown option " + arg;
@@ -403,15 +390,15 @@ CommandLine ParseCommandLine(const std::vector<std::string> &args) {
             value = args[++i];
             // A list written with spaces ("--resolution 64 48", which pbrt_ext took before it
             // took pbrt-v4's commas): its numbers become the comma list.
-            if (value.find(',') == std::string::npos && IsNumber(value))
+            if (value.find(',') == std::string::npos && IsNumberText(value))
                 for (size_t more = ListLength(*option) - 1;
-                     more > 0 && i + 1 < args.size() && IsNumber(args[i + 1]); --more)
+                     more > 0 && i + 1 < args.size() && IsNumberText(args[i + 1]); --more)
                     value += "," + args[++i];
         }
         option->apply(c, value);
     }
     if (c.wavefront && !c.overrides.integrator) c.overrides.integrator = "volpath";
-    if (c.mseReferenceImage.empty() != c.mseReferenceOut.empty())
+    if (c.overrides.mseReferenceImage.empty() != c.overrides.mseReferenceOut.empty())
         throw CommandLineError("--mse-reference-image and --mse-reference-out go together");
     return c;
 }

@@ -33,15 +33,13 @@ struct CommandLine {
     LogLevel logLevel = LogLevel::Error;
     std::string logFile;
     bool wavefront = false;               // pbrt-v4's wavefront integrator: volpath here
-    // What to do between waves (cmd/waveobservers.h).
+    // What to do between waves (cmd/waveobservers.h), with overrides' MSE reference.
     bool writePartialImages = false;
-    std::string mseReferenceImage, mseReferenceOut;
     std::string displayServer;            // host:port of tev
     // pbrt-v4's --format, --toply and --upgrade: print the scene (scene/formatter.h) instead of
     // rendering it.
     enum class Reformat { None, Format, ToPLY, Upgrade } reformat = Reformat::None;
     std::optional<Point2i> pixelMaterial;  // print what this pixel sees instead of rendering
-    bool pixelStats = false;               // write per-pixel time and ray images
 };
 
 // A command line that can't be followed; what() names the option and what it expects.

@@ -162,7 +162,7 @@ int RenderAndWriteImage(Scene &scene, const CommandLine &cmd, const std::vector<
     RenderOptions options{o.nThreads, o.quiet, o.timeLimitSeconds, &RenderInterrupt()};
     WaveObservers observers(cmd, scene);
     std::optional<PixelStatistics> pixelStatistics;
-    if (cmd.pixelStats) options.pixelStatistics = &pixelStatistics.emplace(scene.film.PixelBounds());
+    if (scene.options.pixelStats) options.pixelStatistics = &pixelStatistics.emplace(scene.film.PixelBounds());
     if (observers.Any())
         options.afterWave = [&](int samplesPerPixel) { observers.AfterWave(samplesPerPixel); };
     SampleRange samples;

@@ -24,18 +24,20 @@ double MeanSquaredError(const Image &a, const Image &b) {
 
 WaveObservers::WaveObservers(const CommandLine &cmd, const Scene &scene)
     : scene(scene), writePartialImages(cmd.writePartialImages) {
-    if (!cmd.mseReferenceImage.empty()) {
-        reference = Image::Read(cmd.mseReferenceImage);
+    // The command line's or the scene's Option "msereferenceimage" (the loader checked the pair).
+    const std::string &referenceName = scene.options.mseReferenceImage;
+    if (!referenceName.empty()) {
+        reference = Image::Read(referenceName);
         Vector2i size = scene.film.PixelBounds().Diagonal();
         if (reference.Resolution() != Point2i(size.x, size.y))
-            throw std::runtime_error(cmd.mseReferenceImage + ": error: --mse-reference-image is " +
+            throw std::runtime_error(referenceName + ": error: the MSE reference image is " +
                                      std::to_string(reference.Resolution().x) + " x " +
                                      std::to_string(reference.Resolution().y) + " pixels; the render is " +
                                      std::to_string(size.x) + " x " + std::to_string(size.y));
-        mseOutName = cmd.mseReferenceOut;
+        mseOutName = scene.options.mseReferenceOut;
         mseOut = std::fopen(mseOutName.c_str(), "w");
         if (!mseOut)
-            throw std::runtime_error(mseOutName + ": error: --mse-reference-out: cannot open for "
+            throw std::runtime_error(mseOutName + ": error: the MSE output: cannot open for "
                                      "writing: " + std::strerror(errno));
     }
     if (!cmd.displayServer.empty()) {

@@ -4,11 +4,11 @@
 
 #include "pbrt_ext/util/atomicfile.h"
 #include "pbrt_ext/util/error.h"
+#include "pbrt_ext/util/text.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -50,12 +50,6 @@ const ParsedParameter *Find(const ParsedParameterVector &params, const std::stri
     for (const ParsedParameter &p : params)
         if (p.name == name) return &p;
     return nullptr;
-}
-
-bool IsNumberText(const std::string &s) {
-    double v;
-    auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    return !s.empty() && ec == std::errc() && ptr == s.data() + s.size();
 }
 
 }  // namespace

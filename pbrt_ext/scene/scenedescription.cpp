@@ -1,8 +1,9 @@
 #include "pbrt_ext/scene/scenedescription.h"
 
+#include "pbrt_ext/util/text.h"
+
 #include <fmt/format.h>
 
-#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
@@ -26,14 +27,6 @@ constexpr KnownOption knownOptions[] = {{"disablepixeljitter", "bool"},
                                         {"rendercoordsys", "string"},
                                         {"seed", "integer"},
                                         {"wavefront", "bool"}};
-
-// pbrt-v4 matches option names ignoring case, '-' and '_' ("disable_pixel_jitter").
-std::string NormalizeOptionName(const std::string &name) {
-    std::string n;
-    for (char c : name)
-        if (c != '-' && c != '_') n += char(std::tolower((unsigned char)c));
-    return n;
-}
 
 std::string Unquote(const std::string &s) {
     if (s.size() >= 2 && s.front() == '"' && s.back() == '"') return s.substr(1, s.size() - 2);

@@ -105,6 +105,20 @@ class MediumResolver {
     std::map<std::string, int> indices;
 };
 
+// An MSE reference image needs a file for the MSE lines, and the other way round. The command
+// line gives both or neither, so an incomplete pair comes from an Option directive, whose location
+// the error names.
+void CheckMSEReferencePair(const SceneDescription &scene, const RenderOverrides &overrides) {
+    if (overrides.mseReferenceImage.empty() == overrides.mseReferenceOut.empty()) return;
+    const bool hasImage = !overrides.mseReferenceImage.empty();
+    const char *given = hasImage ? "msereferenceimage" : "msereferenceout";
+    const char *missing = hasImage ? "msereferenceout" : "msereferenceimage";
+    const std::string message = fmt::format("\"{}\" needs \"{}\" too", given, missing);
+    auto option = scene.options.find(given);
+    if (option == scene.options.end()) throw std::invalid_argument(message);
+    throw ParseError(option->second.loc, "option " + message);
+}
+
 // The command line's overrides with the scene's Option directives applied over them, as pbrt-v4
 // applies them (the file wins). The scene description has checked each value's type.
 RenderOverrides WithSceneOptions(const SceneDescription &scene, RenderOverrides overrides) {
@@ -126,10 +140,15 @@ RenderOverrides WithSceneOptions(const SceneDescription &scene, RenderOverrides 
                 throw ParseError(option.loc, "option \"rendercoordsys\" is \"" + value +
                                                  "\"; expected camera, cameraworld or world");
             // pbrt_ext renders in world space: the name changes only pbrt-v4's rounding.
-        } else {
-            WarningAt(option.loc, "Option \"%s\" is not supported yet: ignored", name.c_str());
+        } else if (name == "msereferenceimage") {
+            overrides.mseReferenceImage = value;
+        } else if (name == "msereferenceout") {
+            overrides.mseReferenceOut = value;
+        } else if (name == "pixelstats") {
+            overrides.pixelStats = value == "true";
         }
     }
+    CheckMSEReferencePair(scene, overrides);
     return overrides;
 }
 
@@ -271,6 +290,7 @@ std::unique_ptr<Scene> LoadScene(const std::vector<SceneFile> &files,
     CheckIntegratorFits(scene, integrator, camera, film, sampler);
     SceneBuilder builder(std::move(camera), std::move(film), std::move(sampler));
     builder.SetIntegrator(integrator);
+    builder.SetOptions(overrides);
     builder.SetSwitches({overrides.forceDiffuse, !overrides.disablePixelJitter,
                          !overrides.disableWavelengthJitter, !overrides.disableTextureFiltering});
     builder.SetLightSampler(lightSampler);

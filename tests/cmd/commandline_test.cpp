@@ -124,8 +124,8 @@ TEST(CommandLine, MSEReferenceAndOutputGoTogether) {
     EXPECT_NE(ErrorOf({"--mse-reference-image", "ref.exr"}).find("go together"), std::string::npos);
     CommandLine c = Parse({"--mse-reference-image", "ref.exr", "--mse-reference-out", "mse.txt",
                            "--write-partial-images", "--display-server", "localhost:14158"});
-    EXPECT_EQ(c.mseReferenceImage, "ref.exr");
-    EXPECT_EQ(c.mseReferenceOut, "mse.txt");
+    EXPECT_EQ(c.overrides.mseReferenceImage, "ref.exr");
+    EXPECT_EQ(c.overrides.mseReferenceOut, "mse.txt");
     EXPECT_TRUE(c.writePartialImages);
     EXPECT_EQ(c.displayServer, "localhost:14158");
 }
@@ -332,6 +332,41 @@ TEST_F(CommandTest, MSEAgainstAReferenceAfterEveryWave) {
     EXPECT_EQ(small.status, 1);
     EXPECT_NE(small.output.find("8 x 6 pixels; the render is 4 x 4"), std::string::npos) << small.output;
     EXPECT_FALSE(fs::exists(dir / "s.pfm"));
+}
+
+TEST_F(CommandTest, SceneOptionsAskForMSELinesAndPixelStatsAsTheCommandLineDoes) {
+    const std::string film = "Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 6\n"
+                             "Sampler \"independent\" \"integer pixelsamples\" 4\n";
+    Write("opts.pbrt", "Option \"string msereferenceimage\" \"ref.pfm\"\n"
+                       "Option \"string msereferenceout\" \"mse.txt\"\nOption \"pixelstats\" true\n" +
+                           film + kWorld);
+    ASSERT_EQ(Command("--quiet --outfile ref.pfm scene.pbrt", dir).status, 0);
+    Result run = Command("--quiet --outfile out.exr opts.pbrt", dir);
+    ASSERT_EQ(run.status, 0) << run.output;
+    std::ifstream in(dir / "mse.txt");
+    int spp = 0;
+    double mse = -1;
+    ASSERT_TRUE(in >> spp >> mse);
+    EXPECT_EQ(spp, 1);  // the first wave
+    EXPECT_GE(mse, 0);
+    EXPECT_TRUE(fs::exists(dir / "out-time.exr"));
+    EXPECT_TRUE(fs::exists(dir / "out-rays.exr"));
+    // The file wins over the command line, as in pbrt-v4.
+    Write("nostats.pbrt", "Option \"pixelstats\" false\n" + film + kWorld);
+    ASSERT_EQ(Command("--quiet --pixelstats --outfile off.exr nostats.pbrt", dir).status, 0);
+    EXPECT_FALSE(fs::exists(dir / "off-time.exr"));
+    // A reference image without the file for its lines is an error at its Option.
+    Write("half.pbrt", "Option \"string msereferenceimage\" \"ref.pfm\"\n" + film + kWorld);
+    Result half = Command("--quiet --outfile half.exr half.pbrt", dir);
+    EXPECT_EQ(half.status, 1);
+    EXPECT_NE(half.output.find("half.pbrt:1:1: error: option \"msereferenceimage\" needs "
+                               "\"msereferenceout\" too"), std::string::npos) << half.output;
+    EXPECT_FALSE(fs::exists(dir / "half.exr"));
+    // With both on the command line, the file's image wins and the command line's file is written.
+    Result both = Command("--quiet --mse-reference-image nosuch.pfm --mse-reference-out half.txt "
+                          "--outfile half.exr half.pbrt", dir);
+    EXPECT_EQ(both.status, 0) << both.output;
+    EXPECT_TRUE(fs::exists(dir / "half.txt"));
 }
 
 TEST_F(CommandTest, PartialImagesAreWrittenAfterEveryWave) {
