@@ -84,10 +84,12 @@ struct FunctionOptions {
     int seed = 0;
 };
 
-// guidedpath: the probability of sampling the BSDF rather than the learned distribution, the
-// SD-tree's memory limit, and a tree to write after training or to read instead of training.
+// guidedpath: the probability of sampling the BSDF rather than the learned distribution (where
+// learned, each spatial leaf's starting value), the SD-tree's memory limit, and a tree to write
+// after training or to read instead of training.
 struct GuidingOptions {
     Float bsdfFraction = 0.5f;
+    bool learnBSDFFraction = true;  // per spatial leaf (integrators/bsdffraction.h)
     size_t maxBytes = size_t(256) << 20;
     std::string saveFile, loadFile;
 };

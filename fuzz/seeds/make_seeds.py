@@ -86,12 +86,13 @@ def image_seeds():
 
 # fuzz/guidingtree_target.cpp: a tree file after its magic number and bounds
 # (pbrt_ext/integrators/sdtree.cpp's Write): spatial nodes (axis, two children, leaf), then per
-# leaf a directional tree (record count, node count, per node four children and four energies).
-def dtree(weight, nodes):
+# leaf a directional tree (record count, node count, per node four children and four energies)
+# and its BSDF fraction.
+def dtree(weight, nodes, bsdf_fraction=0.5):
     out = struct.pack("<dI", weight, len(nodes))
     for children, sums in nodes:
         out += struct.pack("<4I4d", *children, *sums)
-    return out
+    return out + struct.pack("<f", bsdf_fraction)
 
 
 def guidingtree_seeds():
@@ -100,7 +101,7 @@ def guidingtree_seeds():
         struct.pack("<4i", 1, 0, 0, 0) + struct.pack("<4i", 1, 0, 0, 1) + struct.pack("<I", 2)
     uniform = dtree(0, [((0, 0, 0, 0), (0, 0, 0, 0))])
     deep = dtree(100, [((1, 0, 0, 0), (3, 1, 0, 0.5)), ((0, 0, 2, 0), (1, 0, 2, 0)),
-                       ((0, 0, 0, 0), (0.25, 0.5, 1, 0.25))])
+                       ((0, 0, 0, 0), (0.25, 0.5, 1, 0.25))], 0.3)
     return {"uniform": one_leaf + uniform, "deep": one_leaf + deep, "two_leaves": two_leaves + deep + uniform}
 
 

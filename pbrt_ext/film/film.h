@@ -22,6 +22,7 @@
 #include "pbrt_ext/images/image.h"
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/spectra/colorspace.h"
+#include "pbrt_ext/util/atomicsum.h"
 #include "pbrt_ext/util/bounds.h"
 #include "pbrt_ext/util/color.h"
 #include "pbrt_ext/util/math.h"
@@ -29,7 +30,6 @@
 #include "pbrt_ext/util/vecmath.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cassert>
 #include <optional>
 #include <string>
@@ -177,18 +177,6 @@ class RGBFilm {
     struct Pixel {
         double rgbSum[3] = {0, 0, 0};
         double weightSum = 0;
-    };
-    // A copyable atomic sum (films are values).
-    struct AtomicSum {
-        AtomicSum() = default;
-        AtomicSum(const AtomicSum &other) : value(other.Load()) {}
-        AtomicSum &operator=(const AtomicSum &other) {
-            value.store(other.Load(), std::memory_order_relaxed);
-            return *this;
-        }
-        void Add(double v) { value.fetch_add(v, std::memory_order_relaxed); }
-        double Load() const { return value.load(std::memory_order_relaxed); }
-        std::atomic<double> value{0};
     };
         // The sensor's RGB of L, scaled down to maxComponentValue keeping its hue.
     RGB ClampedSensorRGB(const SampledSpectrum &L, const SampledWavelengths &lambda) const {

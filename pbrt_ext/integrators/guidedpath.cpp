@@ -28,56 +28,58 @@ Float GuidePDF(const DTree &guide, Vector3f w) { return guide.PDF(CanonicalFromD
 
 GuidedPathIntegrator::GuidedPathIntegrator(const Scene &scene, const IntegratorOptions &options,
                                            SDTree &tree, bool record)
-    : scene(scene), options(options), tree(tree), record(record),
-      bsdfFraction(options.guiding.bsdfFraction) {}
+    : scene(scene), options(options), tree(tree), record(record) {}
 
-const DTree *GuidedPathIntegrator::GuideAt(const SurfaceInteraction &si, const BSDF &bsdf,
-                                           const DTree &learned) const {
+GuidedPathIntegrator::Guide GuidedPathIntegrator::GuideAt(const SurfaceInteraction &si, const BSDF &bsdf,
+                                                          const SDTree::Guide &leaf) const {
     BxDFFlags flags = bsdf.Flags();
-    if (!IsNonSpecular(flags) || IsSpecular(flags) || bsdfFraction >= 1)
-        return nullptr;
+    if (!IsNonSpecular(flags) || IsSpecular(flags) || leaf.bsdfFraction >= 1 || !(leaf.directions.Energy() > 0))
+        return {};
     if (!IsDiffuse(flags)) {
         Vector3f n = Vector3f(FaceForward(si.shading.n, si.wo));
         if (bsdf.PDF(si.wo, Reflect(si.wo, n)) > kNearSpecularDensity)
-            return nullptr;
+            return {};
     }
-    return learned.Energy() > 0 ? &learned : nullptr;
+    return Guide{&leaf.directions, leaf.bsdfFraction, leaf.leaf};
 }
 
-Float GuidedPathIntegrator::ScatterPDF(const BSDF &bsdf, const DTree *guide, Vector3f wo, Vector3f wi) const {
+Float GuidedPathIntegrator::ScatterPDF(const BSDF &bsdf, const Guide &guide, Vector3f wo, Vector3f wi) const {
     Float pdfBSDF = bsdf.PDF(wo, wi);
-    return guide ? bsdfFraction * pdfBSDF + (1 - bsdfFraction) * GuidePDF(*guide, wi) : pdfBSDF;
+    if (!guide.directions)
+        return pdfBSDF;
+    return guide.bsdfFraction * pdfBSDF + (1 - guide.bsdfFraction) * GuidePDF(*guide.directions, wi);
 }
 
 pstd::optional<GuidedPathIntegrator::Scatter> GuidedPathIntegrator::SampleScatter(
-    const BSDF &bsdf, const DTree *guide, Vector3f wo, Sampler &sampler) const {
+    const BSDF &bsdf, const Guide &guide, Vector3f wo, Sampler &sampler) const {
     Float uChoice = sampler.Get1D(), uc = sampler.Get1D();
     Point2f u = sampler.Get2D();
-    if (!guide || uChoice < bsdfFraction) {
+    const Float alpha = guide.bsdfFraction;
+    if (!guide.directions || uChoice < alpha) {
         pstd::optional<BSDFSample> bs = bsdf.Sample_f(wo, uc, u);
         if (!bs)
             return {};
         SampledSpectrum weight = bs->f / bs->pdf;  // exact even where the pdf is only proportional
         Float pdfBSDF = bs->pdfIsProportional ? bsdf.PDF(wo, bs->wi) : bs->pdf;
-        if (!guide)
-            return Scatter{bs->wi, weight, pdfBSDF, 0, *bs};
+        if (!guide.directions)
+            return Scatter{bs->wi, weight, pdfBSDF, pdfBSDF, 0, *bs};
         // One-sample MIS, balance heuristic: this strategy's share of the mixture at wi.
-        Float pdfGuide = GuidePDF(*guide, bs->wi);
-        Float mixture = bsdfFraction * pdfBSDF + (1 - bsdfFraction) * pdfGuide;
+        Float pdfGuide = GuidePDF(*guide.directions, bs->wi);
+        Float mixture = alpha * pdfBSDF + (1 - alpha) * pdfGuide;
         if (!(mixture > 0))
             return {};
-        return Scatter{bs->wi, weight * (pdfBSDF / mixture), mixture, pdfGuide, *bs};
+        return Scatter{bs->wi, weight * (pdfBSDF / mixture), mixture, pdfBSDF, pdfGuide, *bs};
     }
     Float pdfGuide;
-    Vector3f wi = DirectionFromCanonical(guide->Sample(u, &pdfGuide));
+    Vector3f wi = DirectionFromCanonical(guide.directions->Sample(u, &pdfGuide));
     pdfGuide *= Inv4Pi;
     SampledSpectrum f = bsdf.f(wo, wi);
-    Float mixture = bsdfFraction * bsdf.PDF(wo, wi) + (1 - bsdfFraction) * pdfGuide;
+    Float pdfBSDF = bsdf.PDF(wo, wi), mixture = alpha * pdfBSDF + (1 - alpha) * pdfGuide;
     if (!f || !(mixture > 0))
         return {};
     Vector3f n = Vector3f(bsdf.LocalToRender(Vector3f(0, 0, 1)));
     BxDFFlags flags = Dot(wi, n) * Dot(wo, n) > 0 ? BxDFFlags::GlossyReflection : BxDFFlags::GlossyTransmission;
-    return Scatter{wi, f / mixture, mixture, pdfGuide, BSDFSample(f, wi, mixture, flags)};
+    return Scatter{wi, f / mixture, mixture, pdfBSDF, pdfGuide, BSDFSample(f, wi, mixture, flags)};
 }
 
 Float GuidedPathIntegrator::SurvivalProbability(Float throughput, Float learnedRadiance, Float pixelEstimate) {
@@ -102,11 +104,13 @@ void GuidedPathIntegrator::Commit(const std::vector<Vertex> &vertices, const Sam
     for (const Vertex &v : vertices) {
         SampledSpectrum incident = SafeDiv(v.radiance, v.beta);
         RecordAt(v.p, v.wi, Luminance(incident, lambda) / v.pdf);
+        if (v.leaf >= 0)
+            tree.RecordFraction(v.leaf, v.pdfBSDF, v.pdfGuide, Luminance(incident * v.gain, lambda));
     }
 }
 
 SampledSpectrum GuidedPathIntegrator::SampleLd(const SurfaceInteraction &si, const BSDF &bsdf,
-                                               const DTree *guide, const SampledWavelengths &lambda,
+                                               const Guide &guide, const SampledWavelengths &lambda,
                                                Sampler &sampler, RayCounts &rays) const {
     LightSampleContext ctx(si);
     Float uLight = sampler.Get1D();
@@ -185,22 +189,25 @@ SampledSpectrum GuidedPathIntegrator::Li(RayDifferential ray, SampledWavelengths
         BSDF &bsdf = *maybeBSDF;
         if (options.regularize && anyNonSpecularBounces)
             bsdf.Regularize();
-        const DTree &learned = tree.SamplingTree(si.p);
-        const DTree *guide = GuideAt(si, bsdf, learned);
+        const SDTree::Guide leaf = tree.SamplingGuide(si.p);
+        const DTree &learned = leaf.directions;
+        const Guide guide = GuideAt(si, bsdf, leaf);
         lightSampled = IsNonSpecular(bsdf.Flags()) && !scene.lights.empty();
         if (lightSampled)
             add(beta * SampleLd(si, bsdf, guide, lambda, sampler, rays));
         pstd::optional<Scatter> scatter = SampleScatter(bsdf, guide, -ray.d, sampler);
         if (!scatter)
             break;
-        beta *= scatter->weight * AbsDot(scatter->wi, Vector3f(si.shading.n));
+        const SampledSpectrum gain = scatter->weight * AbsDot(scatter->wi, Vector3f(si.shading.n));
+        beta *= gain;
         pdfScatter = scatter->pdf;
         bool specular = scatter->sample.IsSpecular();
         anyNonSpecularBounces |= !specular;
         if (scatter->sample.IsTransmission())
             etaScale *= Sqr(scatter->sample.eta);
         if (record && !specular)
-            vertices.push_back(Vertex{si.p, scatter->wi, pdfScatter, beta, SampledSpectrum(0.f)});
+            vertices.push_back(Vertex{si.p, scatter->wi, pdfScatter, beta, SampledSpectrum(0.f), guide.leaf,
+                                      scatter->pdfBSDF, scatter->pdfGuide, gain});
         prevCtx = LightSampleContext(si);
         ray = si.SpawnRay(ray, scatter->wi, scatter->sample.flags, scatter->sample.eta);
         // Russian roulette by what the path is expected to bring (see SurvivalProbability).
@@ -210,7 +217,7 @@ SampledSpectrum GuidedPathIntegrator::Li(RayDifferential ray, SampledWavelengths
         Float throughput = (beta * etaScale).MaxComponentValue();
         if (throughput < 1 && depth > 1) {
             // DTree::Radiance of the direction, from the density already known where guided.
-            Float pdfLearned = guide ? scatter->pdfGuide : GuidePDF(learned, scatter->wi);
+            Float pdfLearned = guide.directions ? scatter->pdfGuide : GuidePDF(learned, scatter->wi);
             Float radiance = 4 * Pi * pdfLearned * learned.MeanRadiance();
             Float survival = SurvivalProbability(throughput, radiance, pixelEstimate);
             if (sampler.Get1D() >= survival)

@@ -15,6 +15,8 @@ namespace {
 SDTreeOptions TreeOptions(const GuidingOptions &guiding) {
     SDTreeOptions options;
     options.maxBytes = guiding.maxBytes;
+    options.bsdfFraction = guiding.bsdfFraction;
+    options.learnBSDFFraction = guiding.learnBSDFFraction;
     return options;
 }
 

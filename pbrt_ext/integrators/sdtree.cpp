@@ -80,7 +80,7 @@ double DTree::FinalizeNode(uint32_t node) {
     for (int q = 0; q < 4; ++q)
         if (uint32_t child = nodes[node].child[size_t(q)]) {
             double sum = FinalizeNode(child);
-            nodes[node].sum[size_t(q)].value.store(sum, std::memory_order_relaxed);
+            nodes[node].sum[size_t(q)].Store(sum);
         }
     return nodes[node].Total();
 }
@@ -208,7 +208,7 @@ void DTree::Write(std::ostream &out) const {
     out.write(reinterpret_cast<const char *>(&count), sizeof(count));
     for (const Node &n : nodes) {
         out.write(reinterpret_cast<const char *>(n.child.data()), sizeof(n.child));
-        for (const Sum &s : n.sum) {
+        for (const AtomicSum &s : n.sum) {
             double v = s.Load();
             out.write(reinterpret_cast<const char *>(&v), sizeof(v));
         }
@@ -228,13 +228,13 @@ DTree DTree::Read(std::istream &in) {
         Node &n = tree.nodes[i];
         if (!in.read(reinterpret_cast<char *>(n.child.data()), sizeof(n.child)))
             throw std::runtime_error("the file ends inside a directional tree");
-        for (Sum &s : n.sum) {
+        for (AtomicSum &s : n.sum) {
             double v;
             if (!in.read(reinterpret_cast<char *>(&v), sizeof(v)))
                 throw std::runtime_error("the file ends inside a directional tree");
             if (!(v >= 0) || !std::isfinite(v))
                 throw std::runtime_error("a directional tree holds a negative or non-finite energy");
-            s.value.store(v, std::memory_order_relaxed);
+            s.Store(v);
         }
         if (!std::isfinite(n.Total()))
             throw std::runtime_error("a directional tree's energies overflow");
@@ -256,6 +256,7 @@ SDTree::SDTree(const Bounds3f &sceneBounds, SDTreeOptions options) : options(opt
     bounds = Bounds3f(center - Vector3f(half, half, half), center + Vector3f(half, half, half));
     nodes.push_back(Node{0, {0, 0}, 0});
     leaves.push_back(std::make_unique<Leaf>());
+    leaves.back()->bsdfFraction = options.bsdfFraction;
 }
 
 int SDTree::LeafIndex(Point3f p, Bounds3f *box) const {
@@ -313,6 +314,7 @@ void SDTree::SplitLeaves(uint64_t threshold) {
         second->sampling = leaf.sampling;
         second->building = leaf.building;
         second->records = half;
+        second->bsdfFraction = leaf.bsdfFraction;
         leaf.records = half;
         bytes += size_t(second->sampling.NodeCount() + second->building.NodeCount()) * 48 + 2 * sizeof(Node) +
                  sizeof(Leaf);
@@ -325,12 +327,16 @@ void SDTree::SplitLeaves(uint64_t threshold) {
 }
 
 void SDTree::Refine(int iteration) {
-    // What was recorded becomes what is sampled (a leaf that recorded nothing keeps its tree).
+    // What was recorded becomes what is sampled (a leaf that recorded nothing keeps its tree),
+    // with the BSDF fraction its guided samples favoured (one that had too few keeps its own).
     for (auto &leaf : leaves) {
         leaf->building.Finalize();
         leaf->building.SetWeight(double(leaf->records.load()));
         if (leaf->building.Energy() > 0)
             leaf->sampling = leaf->building;
+        if (options.learnBSDFFraction)
+            leaf->bsdfFraction = leaf->fraction.Best(leaf->bsdfFraction);
+        leaf->fraction.Reset();
     }
     SplitLeaves(uint64_t(options.spatialThreshold * std::sqrt(std::pow(2.0, iteration))));
     for (auto &leaf : leaves) {
@@ -354,7 +360,7 @@ SDTree::Statistics SDTree::Stats() const {
 
 namespace {
 
-constexpr char kMagic[8] = {'P', 'B', 'X', 'S', 'D', 'T', 'R', '2'};
+constexpr char kMagic[8] = {'P', 'B', 'X', 'S', 'D', 'T', 'R', '3'};
 
 template <typename T>
 void Put(std::ostream &out, const T &v) { out.write(reinterpret_cast<const char *>(&v), sizeof(v)); }
@@ -382,7 +388,10 @@ void SDTree::Write(const std::string &path) const {
         Put(out, int32_t(n.leaf));
     }
     Put(out, uint32_t(leaves.size()));
-    for (const auto &leaf : leaves) leaf->sampling.Write(out);
+    for (const auto &leaf : leaves) {
+        leaf->sampling.Write(out);
+        Put(out, leaf->bsdfFraction);
+    }
     if (!out.flush())
         throw std::runtime_error(path + ": error: cannot write the guiding tree");
 }
@@ -432,6 +441,9 @@ SDTree SDTree::Read(const std::string &path, const Bounds3f &sceneBounds, SDTree
         for (uint32_t i = 0; i < leafCount; ++i) {
             auto leaf = std::make_unique<Leaf>();
             leaf->sampling = DTree::Read(in);
+            leaf->bsdfFraction = Get<Float>(in, "a leaf's BSDF fraction");
+            if (!(leaf->bsdfFraction >= 0 && leaf->bsdfFraction <= 1))
+                throw std::runtime_error("a leaf's BSDF fraction is outside [0, 1]");
             leaf->building = leaf->sampling.Refined(options.directionalThreshold, options.maxDirectionalDepth);
             tree.leaves.push_back(std::move(leaf));
         }

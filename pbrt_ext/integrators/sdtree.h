@@ -13,10 +13,13 @@
 // and the one being recorded into (thread-safe sums). After an iteration, Refine makes the
 // recorded energy the sampling tree, splits spatial leaves that received many records (more
 // than c sqrt(2^k) after iteration k) and quadrants that hold more than a fraction of a
-// leaf's energy, and starts a fresh recording tree of that shape.
+// leaf's energy, and starts a fresh recording tree of that shape. Each leaf also holds the
+// fraction of directions sampled from the BSDF there, learned as it learns (bsdffraction.h).
 #pragma once
 
+#include "pbrt_ext/integrators/bsdffraction.h"
 #include "pbrt_ext/pbrt.h"
+#include "pbrt_ext/util/atomicsum.h"
 #include "pbrt_ext/util/bounds.h"
 #include "pbrt_ext/util/rng.h"
 #include "pbrt_ext/util/vecmath.h"
@@ -72,20 +75,9 @@ class DTree {
     static DTree Read(std::istream &in);
 
   private:
-    struct Sum {
-        Sum() = default;
-        Sum(const Sum &other) : value(other.Load()) {}
-        Sum &operator=(const Sum &other) {
-            value.store(other.Load(), std::memory_order_relaxed);
-            return *this;
-        }
-        void Add(double v) { value.fetch_add(v, std::memory_order_relaxed); }
-        double Load() const { return value.load(std::memory_order_relaxed); }
-        std::atomic<double> value{0};
-    };
     struct Node {
         std::array<uint32_t, 4> child{};  // 0: the quadrant is a leaf
-        std::array<Sum, 4> sum;
+        std::array<AtomicSum, 4> sum;
         double Total() const {
             return sum[0].Load() + sum[1].Load() + sum[2].Load() + sum[3].Load();
         }
@@ -104,6 +96,8 @@ struct SDTreeOptions {
     double directionalThreshold = 0.01;
     int maxDirectionalDepth = 20;
     size_t maxBytes = size_t(256) << 20;  // no spatial split past this
+    Float bsdfFraction = 0.5f;            // every leaf's at first
+    bool learnBSDFFraction = true;        // or keep bsdfFraction everywhere
 };
 
 class SDTree {
@@ -113,12 +107,29 @@ class SDTree {
 
     // The sampling tree of the leaf holding p.
     const DTree &SamplingTree(Point3f p) const { return leaves[LeafIndex(p, nullptr)]->sampling; }
+    // What the leaf holding p guides with: its sampling tree and BSDF fraction, and the leaf's
+    // index for RecordFraction.
+    struct Guide {
+        const DTree &directions;
+        Float bsdfFraction;
+        int leaf;
+    };
+    Guide SamplingGuide(Point3f p) const {
+        int index = LeafIndex(p, nullptr);
+        const Leaf &leaf = *leaves[size_t(index)];
+        return Guide{leaf.sampling, leaf.bsdfFraction, index};
+    }
 
     // Records value (the luminance of the radiance that arrived along w, over the density w was
     // sampled with) at p: stochastically box-filtered in space over a cell of the leaf's size
     // around p (rng), and in direction over the sampling tree's leaf quadrant around w.
     // Thread-safe.
     void Record(Point3f p, Vector3f w, double value, RNG &rng);
+    // A guided sample at leaf (of SamplingGuide), for its BSDF fraction
+    // (BSDFFractionLearner::Record). Thread-safe.
+    void RecordFraction(int leaf, Float pdfBSDF, Float pdfGuide, double integrandOverPDF) {
+        leaves[size_t(leaf)]->fraction.Record(pdfBSDF, pdfGuide, integrandOverPDF);
+    }
 
     // After iteration k (0, 1, ...): see the header comment.
     void Refine(int iteration);
@@ -139,6 +150,8 @@ class SDTree {
     struct Leaf {
         DTree sampling, building;
         std::atomic<uint64_t> records{0};
+        Float bsdfFraction = 0.5f;  // sampled with
+        BSDFFractionLearner fraction;  // what this iteration found
     };
     struct Node {
         int axis = 0;                 // of the split: an inner node's, or a leaf's next

@@ -23,9 +23,11 @@
 namespace pbrt {
 
 struct GuidedPathTestAccess {
-    static pstd::optional<Vector3f> Sample(const GuidedPathIntegrator &g, const BSDF &bsdf, const DTree *guide,
-                                           Vector3f wo, Sampler &sampler, Float *pdf, SampledSpectrum *weight) {
-        auto s = g.SampleScatter(bsdf, guide, wo, sampler);
+    // Guided by directions, from the BSDF with probability bsdfFraction.
+    static pstd::optional<Vector3f> Sample(const GuidedPathIntegrator &g, const BSDF &bsdf, const DTree *directions,
+                                           Float bsdfFraction, Vector3f wo, Sampler &sampler, Float *pdf,
+                                           SampledSpectrum *weight) {
+        auto s = g.SampleScatter(bsdf, {directions, bsdfFraction, -1}, wo, sampler);
         if (!s)
             return {};
         *pdf = s->pdf;
@@ -35,8 +37,9 @@ struct GuidedPathTestAccess {
     static Float Survival(Float throughput, Float learned, Float pixel) {
         return GuidedPathIntegrator::SurvivalProbability(throughput, learned, pixel);
     }
-    static Float PDF(const GuidedPathIntegrator &g, const BSDF &bsdf, const DTree *guide, Vector3f wo, Vector3f wi) {
-        return g.ScatterPDF(bsdf, guide, wo, wi);
+    static Float PDF(const GuidedPathIntegrator &g, const BSDF &bsdf, const DTree *directions, Float bsdfFraction,
+                     Vector3f wo, Vector3f wi) {
+        return g.ScatterPDF(bsdf, {directions, bsdfFraction, -1}, wo, wi);
     }
 };
 
@@ -122,43 +125,67 @@ TEST(GuidedPath, TheMixtureFollowsTheDensityItReports) {
     BSDF bsdf(Normal3f(0, 1, 0), Vector3f(1, 0, 0), DiffuseBxDF(SampledSpectrum(0.5f)));
     Vector3f wo = Normalize(Vector3f(0.2f, 1, -0.3f));
     GuidedPathIntegrator guided(*scene, scene->integratorOptions, tree, false);
+    constexpr Float kFraction = 0.3f;  // a leaf's learned BSDF fraction
     Chi2Options opts;
     auto sample = [&](Point2f u, Float uc) -> pstd::optional<Vector3f> {
         Sampler s = IndependentSampler(1, 0);
         s.StartPixelSample(Point2i(int(u.x * 1e6f), int(u.y * 1e6f)), int(uc * 1e6f));
         Float pdf;
         SampledSpectrum weight;
-        pstd::optional<Vector3f> wi = GuidedPathTestAccess::Sample(guided, bsdf, &guide, wo, s, &pdf, &weight);
+        pstd::optional<Vector3f> wi = GuidedPathTestAccess::Sample(guided, bsdf, &guide, kFraction, wo, s, &pdf,
+                                                                   &weight);
         if (wi) {
             // For a non-layered BSDF the reported density is the mixture's, to rounding.
-            EXPECT_NEAR(pdf, GuidedPathTestAccess::PDF(guided, bsdf, &guide, wo, *wi), 1e-4f * pdf);
+            EXPECT_NEAR(pdf, GuidedPathTestAccess::PDF(guided, bsdf, &guide, kFraction, wo, *wi), 1e-4f * pdf);
         }
         return wi;
     };
     // A guided direction where the BSDF is 0 (below the floor) ends the path: no sample. The
     // directions sampled are those of the mixture where f is not 0.
     auto pdf = [&](Vector3f wi) {
-        return bsdf.f(wo, wi) ? GuidedPathTestAccess::PDF(guided, bsdf, &guide, wo, wi) : Float(0);
+        return bsdf.f(wo, wi) ? GuidedPathTestAccess::PDF(guided, bsdf, &guide, kFraction, wo, wi) : Float(0);
     };
     opts.sampleCount = 200000;
     Chi2Result r = Chi2TestSampler(sample, pdf, opts);
     EXPECT_TRUE(r.passed) << r.message;
 }
 
-// The Cornell box of tests/support/scenes.h as a scene file, with the integrator's options.
-std::string CornellFile() {
+// The Cornell box of tests/support/scenes.h as a scene file, with the integrator's parameters.
+std::string CornellFile(const std::string &guiding = "", const std::string &name = "box.pbrt") {
     std::filesystem::path dir = TestFolder("pbrt_ext_guidedpath_test");
-    std::ofstream(dir / "box.pbrt")
+    std::ofstream(dir / name)
         << "LookAt 2.78 2.73 -8  2.78 2.73 0  0 1 0\nCamera \"perspective\" \"float fov\" 39.3\n"
         << "Film \"rgb\" \"integer xresolution\" 16 \"integer yresolution\" 16\n"
-        << "Sampler \"zsobol\" \"integer pixelsamples\" 32\nIntegrator \"guidedpath\"\nWorldBegin\n"
+        << "Sampler \"zsobol\" \"integer pixelsamples\" 32\nIntegrator \"guidedpath\" " << guiding
+        << "\nWorldBegin\n"
         << "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [17 12 4]\n"
         << "Shape \"bilinearmesh\" \"point3 P\" [2.13 5.49 2.27  3.43 5.49 2.27  2.13 5.49 3.32  3.43 5.49 3.32]\n"
         << "AttributeEnd\nMaterial \"diffuse\"\n"
         << "Shape \"bilinearmesh\" \"point3 P\" [0 0 0  5.5 0 0  0 0 5.5  5.5 0 5.5]\n"
         << "Shape \"bilinearmesh\" \"point3 P\" [0 5.5 0  5.5 5.5 0  0 5.5 5.5  5.5 5.5 5.5]\n"
         << "Shape \"bilinearmesh\" \"point3 P\" [0 0 5.5  5.5 0 5.5  0 5.5 5.5  5.5 5.5 5.5]\n";
-    return (dir / "box.pbrt").string();
+    return (dir / name).string();
+}
+
+// The BSDF fraction of the trained tree's leaf at the middle of the box.
+Float TrainedFraction(const std::string &guiding, const std::string &name) {
+    const std::string scene = CornellFile(guiding, name);
+    const std::string tree = (TestFolder("pbrt_ext_guidedpath_test") / (name + ".sdt")).string();
+    RenderOverrides save;
+    save.guidingSave = tree;
+    save.quiet = true;
+    auto loaded = LoadScene(scene, save);
+    Render(*loaded, {0, true});
+    return SDTree::Read(tree, loaded->aggregate.WorldBound()).SamplingGuide(Point3f(2.75f, 2.75f, 2.75f)).bsdfFraction;
+}
+
+TEST(GuidedPath, TrainingLearnsTheBSDFFractionUnlessToldNotTo) {
+    // Started off BSDFFractionLearner's grid, it ends on it: learned from the training's samples.
+    Float learned = TrainedFraction("\"float bsdffraction\" 0.55", "learned.pbrt");
+    EXPECT_GE(learned, 0.1f);
+    EXPECT_LE(learned, 0.9f);
+    EXPECT_NEAR(learned * 10, std::round(learned * 10), 1e-4f);
+    EXPECT_EQ(TrainedFraction("\"bool learnbsdffraction\" false \"float bsdffraction\" 0.7", "fixed.pbrt"), 0.7f);
 }
 
 TEST(GuidedPath, ALoadedTreeRendersTheSameImageInSlicesThatMerge) {

@@ -2,8 +2,9 @@
 // density it reports (chi-square, tests/support/chi2.h, alpha 0.01 with Sidak over the suite);
 // its density integrates to 1 and its recorded energy is conserved by box filtering; refinement
 // splits where energy is and leaves a uniform tree alone; the spatial tree splits leaves that
-// record many samples; a written tree reads back with the same densities, and a file that is
-// not one, or is of another scene, is an error naming it.
+// record many samples; each leaf learns the BSDF fraction of least cross entropy with what its
+// samples found (bsdffraction.h); a written tree reads back with the same densities and
+// fractions, and a file that is not one, or is of another scene, is an error naming it.
 #include "pbrt_ext/integrators/sdtree.h"
 
 #include "tests/support/chi2.h"
@@ -14,6 +15,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 using namespace pbrt;
 
@@ -179,6 +181,71 @@ TEST(SDTree, WrittenTreeReadsBackTheSame) {
         ASSERT_EQ(read.SamplingTree(p).PDF(c), tree.SamplingTree(p).PDF(c));
         ASSERT_EQ(read.SamplingTree(p).MeanRadiance(), tree.SamplingTree(p).MeanRadiance());
     }
+}
+
+// The fraction of the mixture alpha p_bsdf + (1 - alpha) p_guide whose cross entropy with the
+// integrand is least, from samples of known densities and weights.
+TEST(BSDFFractionLearner, ChoosesTheCandidateOfLeastCrossEntropy) {
+    // Half the samples where only the BSDF has density, half where only the guide has, the first
+    // weighing four times as much: -4 log(alpha) - log(1 - alpha) is least at alpha = 0.8.
+    BSDFFractionLearner split;
+    for (int i = 0; i < 40; ++i) {
+        split.Record(2, 0, 4);
+        split.Record(0, 2, 1);
+    }
+    EXPECT_FLOAT_EQ(split.Best(0.5f), 0.8f);
+    // Where the integrand follows the BSDF, the most BSDF sampling a candidate has; where it
+    // follows the guide, the least.
+    BSDFFractionLearner bsdfWins, guideWins;
+    for (int i = 0; i < 100; ++i) {
+        bsdfWins.Record(1, 0.01f, 1);
+        guideWins.Record(0.01f, 1, 1);
+    }
+    EXPECT_FLOAT_EQ(bsdfWins.Best(0.5f), 0.9f);
+    EXPECT_FLOAT_EQ(guideWins.Best(0.5f), 0.1f);
+    // Too few samples, samples that found nothing, or none since Reset: the fraction stays.
+    BSDFFractionLearner few, dark;
+    for (uint64_t i = 0; i + 1 < BSDFFractionLearner::kMinimumSamples; ++i) few.Record(1, 0.01f, 1);
+    for (int i = 0; i < 100; ++i) dark.Record(1, 0.01f, 0);
+    EXPECT_EQ(few.Best(0.3f), 0.3f);
+    EXPECT_EQ(dark.Best(0.3f), 0.3f);
+    bsdfWins.Reset();
+    EXPECT_EQ(bsdfWins.Best(0.3f), 0.3f);
+    // Samples that are not samples (no density, or a weight that is not finite) are ignored.
+    BSDFFractionLearner bad;
+    for (int i = 0; i < 100; ++i) {
+        bad.Record(0, 0, 1);
+        bad.Record(1, 0.01f, std::numeric_limits<double>::infinity());
+        bad.Record(1, std::numeric_limits<Float>::quiet_NaN(), 1);
+    }
+    EXPECT_EQ(bad.Best(0.3f), 0.3f);
+}
+
+// Each leaf's fraction is learned from its own samples at Refine, kept where it learned nothing
+// (or where learning is off), inherited by the halves of a split, and written with the tree.
+TEST(SDTree, LearnsEachLeafsBSDFFractionAndWritesIt) {
+    SDTree tree = Trained(60000);
+    ASSERT_GT(tree.Stats().leaves, 1);
+    const Point3f a(0.1f, 0.1f, 0.1f), b(0.9f, 0.9f, 0.9f);
+    ASSERT_NE(tree.SamplingGuide(a).leaf, tree.SamplingGuide(b).leaf);
+    EXPECT_EQ(tree.SamplingGuide(a).bsdfFraction, 0.5f);
+    for (int i = 0; i < 100; ++i) tree.RecordFraction(tree.SamplingGuide(a).leaf, 0.01f, 1, 1);
+    tree.Refine(1);
+    EXPECT_FLOAT_EQ(tree.SamplingGuide(a).bsdfFraction, 0.1f);
+    EXPECT_EQ(tree.SamplingGuide(b).bsdfFraction, 0.5f);
+    std::string file = (TestFolder("pbrt_ext_sdtree_test") / "fractions.sdt").string();
+    tree.Write(file);
+    SDTree read = SDTree::Read(file, Bounds3f(Point3f(0, 0, 0), Point3f(1, 1, 1)));
+    EXPECT_FLOAT_EQ(read.SamplingGuide(a).bsdfFraction, 0.1f);
+    EXPECT_EQ(read.SamplingGuide(b).bsdfFraction, 0.5f);
+
+    SDTreeOptions fixed;
+    fixed.bsdfFraction = 0.7f;
+    fixed.learnBSDFFraction = false;
+    SDTree still(Bounds3f(Point3f(0, 0, 0), Point3f(1, 1, 1)), fixed);
+    for (int i = 0; i < 100; ++i) still.RecordFraction(still.SamplingGuide(a).leaf, 0.01f, 1, 1);
+    still.Refine(0);
+    EXPECT_EQ(still.SamplingGuide(a).bsdfFraction, 0.7f);
 }
 
 TEST(SDTree, BadFilesAreErrorsNamingThem) {
