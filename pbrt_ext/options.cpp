@@ -67,7 +67,8 @@ constexpr std::pair<const char *, IntegratorType> kIntegrators[] = {
     {"randomwalk", IntegratorType::RandomWalk},
     {"ambientocclusion", IntegratorType::AmbientOcclusion},
     {"function", IntegratorType::Function},
-    {"guidedpath", IntegratorType::GuidedPath}};
+    {"guidedpath", IntegratorType::GuidedPath},
+    {"guidedvolpath", IntegratorType::GuidedVolPath}};
 
 constexpr std::pair<const char *, TestFunction> kTestFunctions[] = {
     {"step", TestFunction::Step},
@@ -106,7 +107,7 @@ std::optional<std::string> IntegratorNameError(const std::string &name) {
     if (IntegratorTypeFromName(name))
         return {};
     return "unknown Integrator \"" + name + "\": expected path, volpath, bdpt, lightpath, sppm, mlt, "
-           "simplepath, simplevolpath, randomwalk, ambientocclusion, function or guidedpath";
+           "simplepath, simplevolpath, randomwalk, ambientocclusion, function, guidedpath or guidedvolpath";
 }
 
 }  // namespace pbrt

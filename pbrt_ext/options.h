@@ -40,11 +40,17 @@ enum class IntegratorType {
     AmbientOcclusion,  // "ambientocclusion" (integrators/ambientocclusion.h)
     Function,       // "function": sample generators on test functions (integrators/function.h)
     GuidedPath,     // "guidedpath": path tracing guided by a learned SD-tree (integrators/guidedpath.h)
+    GuidedVolPath,  // "guidedvolpath": volpath guided by it (integrators/volpath.h); guidedpath
+                    // where there are no media to render, as volpath is path there
 };
 
 // "path", "volpath", ...; none for a name pbrt-v4 does not have.
 std::optional<IntegratorType> IntegratorTypeFromName(const std::string &name);
 const char *IntegratorName(IntegratorType type);
+// guidedpath and guidedvolpath: they learn an SD-tree (integrators/guiding.h).
+inline bool IsGuided(IntegratorType type) {
+    return type == IntegratorType::GuidedPath || type == IntegratorType::GuidedVolPath;
+}
 
 // The 2D test functions of the function integrator, each with integral 1 over [0, 1)^2.
 enum class TestFunction { Step, Diagonal, Disk, Checkerboard, RotatedCheckerboard, Gaussian };
@@ -84,9 +90,9 @@ struct FunctionOptions {
     int seed = 0;
 };
 
-// guidedpath: the probability of sampling the BSDF rather than the learned distribution (where
-// learned, each spatial leaf's starting value), the SD-tree's memory limit, and a tree to write
-// after training or to read instead of training.
+// guidedpath and guidedvolpath: the probability of sampling the BSDF (or phase function) rather
+// than the learned distribution (where learned, each spatial leaf's starting value), the
+// SD-tree's memory limit, and a tree to write after training or to read instead of training.
 struct GuidingOptions {
     Float bsdfFraction = 0.5f;
     bool learnBSDFFraction = true;  // per spatial leaf (integrators/bsdffraction.h)
@@ -141,7 +147,7 @@ struct RenderOverrides {
     // "maxdepth" and none of its other parameters.
     std::optional<std::string> integrator;
     double timeLimitSeconds = 0;             // 0: none
-    std::string guidingSave, guidingLoad;    // guidedpath's tree: written after training, or read
+    std::string guidingSave, guidingLoad;    // the guided integrators' tree: written after training, or read
     // pbrt-v4's debugging switches, which a scene's Option directive can also set (and then wins):
     bool quick = false;                    // resolution / 4, 1 spp (mlt: mutations and bootstrap / 16)
     bool forceDiffuse = false;             // every BSDF: a diffuse one with its reflectance

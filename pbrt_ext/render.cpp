@@ -46,6 +46,7 @@ TileIntegrator ChooseIntegrator(Scene &scene) {
     case IntegratorType::MLT:
     case IntegratorType::Function:
     case IntegratorType::GuidedPath:
+    case IntegratorType::GuidedVolPath:
         break;
     }
     return PathIntegrator(scene, o);
@@ -86,8 +87,10 @@ SampleRange SamplesToRender(const Scene &scene, const RenderOptions &options) {
         throw std::invalid_argument("function renders no sample range: it writes an error table, "
                                     "not an image");
     case IntegratorType::GuidedPath:
+    case IntegratorType::GuidedVolPath:
         if (scene.integratorOptions.guiding.loadFile.empty())
-            throw std::invalid_argument("guidedpath renders a sample range only with a trained tree "
+            throw std::invalid_argument(std::string(IntegratorName(scene.integratorOptions.type)) +
+                                        " renders a sample range only with a trained tree "
                                         "(--guiding-load): its training depends on the range");
         break;
     default:
@@ -124,6 +127,7 @@ RenderStatistics Render(Scene &scene, const RenderOptions &options) {
     case IntegratorType::Function:
         return RenderFunction(scene, options);  // an error table per sample count
     case IntegratorType::GuidedPath:
+    case IntegratorType::GuidedVolPath:
         return RenderGuided(scene, samples, options);  // training iterations, then the image
     default:
         break;

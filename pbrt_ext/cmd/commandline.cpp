@@ -260,7 +260,8 @@ const std::vector<OptionSpec> &Options() {
          }},
         {"integrator", "name", G::Ours,
          "path, volpath, bdpt, lightpath, sppm, mlt, simplepath, simplevolpath, randomwalk, "
-         "ambientocclusion, function or guidedpath, with the scene's maxdepth (default: the "
+         "ambientocclusion, function, guidedpath or guidedvolpath, with the scene's maxdepth "
+         "(default: the "
          "scene's)",
          [](CommandLine &c, const std::string &v) {
              c.overrides.integrator = Checked("integrator", v, IntegratorNameError);
@@ -293,10 +294,10 @@ const std::vector<OptionSpec> &Options() {
          [](CommandLine &c, const std::string &v) {
              c.overrides.layeredExitMIS = Named("layered-estimator", v, ParseLayeredEstimator);
          }},
-        {"guiding-save", "file", G::Ours, "guidedpath: write the trained SD-tree to this file",
+        {"guiding-save", "file", G::Ours, "guidedpath, guidedvolpath: write the trained SD-tree to this file",
          [](CommandLine &c, const std::string &v) { c.overrides.guidingSave = v; }},
         {"guiding-load", "file", G::Ours,
-         "guidedpath: render with this file's SD-tree instead of training one",
+         "guidedpath, guidedvolpath: render with this file's SD-tree instead of training one",
          [](CommandLine &c, const std::string &v) { c.overrides.guidingLoad = v; }},
         // pbrt-v4's that a CPU renderer has no use for.
         {"gpu", nullptr, G::NotApplicable, "", NotApplicable("gpu", "pbrt_ext renders on the CPU")},

@@ -41,7 +41,7 @@ std::string FilmIdentity(const RGBFilm &film) {
 
 // The guiding tree a guided render reads (its file's hash): slices with another tree differ.
 std::string GuidingIdentity(const IntegratorOptions &i) {
-    if (i.type != IntegratorType::GuidedPath || i.guiding.loadFile.empty())
+    if (!IsGuided(i.type) || i.guiding.loadFile.empty())
         return "";
     std::ifstream in(i.guiding.loadFile, std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

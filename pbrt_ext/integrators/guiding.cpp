@@ -37,6 +37,16 @@ void Add(RenderStatistics &total, const RenderStatistics &next) {
     total.cancelled |= next.cancelled;
 }
 
+// The guided integrator that samples from tree, and records into it where record: guidedvolpath's
+// where there are media or subsurface materials to render, guidedpath's otherwise (as volpath is
+// path there).
+TileIntegrator GuidedIntegrator(const Scene &scene, SDTree &tree, bool record) {
+    const IntegratorOptions &options = scene.integratorOptions;
+    if (options.type == IntegratorType::GuidedVolPath && (!scene.media.empty() || scene.HasSubsurface()))
+        return VolPathIntegrator(scene, options, PathGuide(tree, record));
+    return GuidedPathIntegrator(scene, options, tree, record);
+}
+
 // Training iterations from sample index first (see the header comment); the tree learns.
 Training Train(Scene &scene, SDTree &tree, SampleRange samples, const RenderOptions &options) {
     Training training;
@@ -56,7 +66,7 @@ Training Train(Scene &scene, SDTree &tree, SampleRange samples, const RenderOpti
         const double before = elapsed();
         const int first = samples.first + training.samples;
         Add(training.render,
-            RenderTiles(scene, GuidedPathIntegrator(scene, scene.integratorOptions, tree, true),
+            RenderTiles(scene, GuidedIntegrator(scene, tree, true),
                         SampleRange{first, first + n}, quiet, "Training"));
         tree.Refine(k);
         training.samples += n;
@@ -92,8 +102,7 @@ RenderStatistics RenderGuided(Scene &scene, SampleRange samples, const RenderOpt
     if (options.timeLimitSeconds > 0)
         final.timeLimitSeconds = std::max(1e-3, options.timeLimitSeconds - training.seconds);
     const SampleRange rest{samples.first + training.samples, samples.last};
-    RenderStatistics stats = RenderTiles(scene, GuidedPathIntegrator(scene, scene.integratorOptions, tree, false),
-                                         rest, final, "Rendering");
+    RenderStatistics stats = RenderTiles(scene, GuidedIntegrator(scene, tree, false), rest, final, "Rendering");
     RenderStatistics total = training.render;
     Add(total, stats);
     total.seconds = training.seconds + stats.seconds;

@@ -1,4 +1,4 @@
-// guidedpath's render: learn, then render with what was learned (Müller et al. 2017, section 5).
+// guidedpath's and guidedvolpath's render: learn, then render with what was learned (Müller et al. 2017, section 5).
 // Training iterations of 1, 2, 4, ... samples per pixel each render with the SD-tree of the last
 // (recording into the next), until they have taken half of the budget or the next would take
 // more; the rest of the budget renders with the final tree, frozen. Every iteration's samples

@@ -1,7 +1,7 @@
 // Rendering by camera samples (pbrt-v4's ImageTileIntegrator::Render): tiles over all cores (TBB)
 // in waves of samples, a progress bar, the time limit and cancellation of RenderOptions, and the
 // statistics. Every integrator that estimates each camera sample by itself renders this way;
-// sppm, mlt and function have their own loops, and guidedpath calls this once per iteration.
+// sppm, mlt and function have their own loops, and the guided ones call this once per iteration.
 #pragma once
 
 #include "pbrt_ext/integrators/ambientocclusion.h"

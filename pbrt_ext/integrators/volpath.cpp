@@ -2,6 +2,7 @@
 
 #include "pbrt_ext/integrators/transmittance.h"
 #include "pbrt_ext/scene.h"
+#include "pbrt_ext/spectra/spectrum.h"
 #include "pbrt_ext/util/hash.h"
 #include "pbrt_ext/util/rng.h"
 #include "pbrt_ext/util/sampling.h"
@@ -12,6 +13,19 @@ SampledSpectrum VolPathIntegrator::Li(RayDifferential ray, SampledWavelengths &l
                                       RayCounts &rays) const {
     PathState path;
     path.ray = ray;
+    thread_local PathGuide::PathRecord vertices;
+    if (guide && guide->Recording()) {
+        vertices.clear();
+        path.record = &vertices;
+    }
+    Trace(path, lambda, sampler, rays);
+    if (path.record)
+        guide->Commit(vertices, lambda);
+    return path.L;
+}
+
+void VolPathIntegrator::Trace(PathState &path, SampledWavelengths &lambda, Sampler &sampler,
+                              RayCounts &rays) const {
     while (true) {
         ++rays.closest;
         pstd::optional<ShapeIntersection> hit = scene.Intersect(path.ray);
@@ -19,14 +33,14 @@ SampledSpectrum VolPathIntegrator::Li(RayDifferential ray, SampledWavelengths &l
             MediumOutcome outcome =
                 SampleMedium(path, hit ? hit->tHit : Infinity, lambda, sampler, rays);
             if (outcome == MediumOutcome::Terminated)
-                return path.L;
+                return;
             if (outcome == MediumOutcome::Scattered)
                 continue;
         }
         if (!hit) {
             for (int index : scene.infiniteLights)
                 AddEmitted(path, scene.lights[index].Le(path.ray, lambda), index);
-            break;
+            return;
         }
         SurfaceInteraction &si = hit->intr;
         if (si.areaLightIndex >= 0)
@@ -42,55 +56,134 @@ SampledSpectrum VolPathIntegrator::Li(RayDifferential ray, SampledWavelengths &l
             continue;
         }
         if (path.depth++ >= options.maxDepth)
-            return path.L;
+            return;
         BSDF &bsdf = *maybeBSDF;
         if (options.regularize && path.anyNonSpecularBounces)
             bsdf.Regularize();
 
+        const std::optional<SDTree::Guide> leaf = LeafAt(path, si.p, 2);
+        const PathGuide::VertexGuide vertex = leaf ? PathGuide::AtSurface(si, bsdf, *leaf) : PathGuide::VertexGuide{};
         if (IsNonSpecular(bsdf.Flags()) && !scene.lights.empty())
-            path.L += SampleLdAtSurface(si, bsdf, lambda, sampler, path, rays);
+            path.Add(SampleLdAtSurface(si, bsdf, vertex, lambda, sampler, path, rays));
         path.prevCtx = LightSampleContext(si);
 
-        Vector3f wo = si.wo;
-        Float u = sampler.Get1D();
-        pstd::optional<BSDFSample> bs = bsdf.Sample_f(wo, u, sampler.Get2D());
-        if (!bs)
-            break;
-        path.beta *= bs->f * AbsDot(bs->wi, Vector3f(si.shading.n)) / bs->pdf;
-        path.r_l = path.r_u / (bs->pdfIsProportional ? bsdf.PDF(wo, bs->wi) : bs->pdf);
-        path.specularBounce = bs->IsSpecular();
-        path.anyNonSpecularBounces |= !bs->IsSpecular();
-        if (bs->IsTransmission())
-            path.etaScale *= Sqr(bs->eta);
-        path.ray = si.SpawnRay(path.ray, bs->wi, bs->flags, bs->eta);
-        if (bs->IsTransmission())
+        BSDFSample bs;
+        if (!ScatterAtSurface(path, si, bsdf, vertex, sampler, &bs))
+            return;
+        if (bs.IsTransmission())
             if (std::optional<TabulatedBSSRDF> bssrdf = scene.GetBSSRDF(si, lambda))
                 if (!ScatterSubsurface(path, si, *bssrdf, lambda, sampler, rays))
-                    break;
+                    return;
 
         // Russian roulette on the throughput over its probability, without refraction's
-        // radiance scaling.
+        // radiance scaling; with a guide, also by the radiance learned along the new direction.
         if (!path.beta)
-            break;
+            return;
         SampledSpectrum rrBeta = path.beta * path.etaScale / MISDenominator(path.r_u);
         Float uRR = sampler.Get1D();
         if (rrBeta.MaxComponentValue() < 1 && path.depth > 1) {
-            Float q = std::max<Float>(0, 1 - rrBeta.MaxComponentValue());
-            if (uRR < q)
-                break;
-            path.beta /= 1 - q;
+            if (leaf) {
+                const DTree &learned = leaf->directions;
+                Float radiance = PathGuide::LearnedRadiance(learned, GuidePDF(learned, path.ray.d));
+                Float survival = PathGuide::SurvivalProbability(rrBeta.MaxComponentValue(), radiance,
+                                                                path.pixelEstimate);
+                if (uRR >= survival)
+                    return;
+                path.beta /= survival;
+            } else {
+                Float q = std::max<Float>(0, 1 - rrBeta.MaxComponentValue());
+                if (uRR < q)
+                    return;
+                path.beta /= 1 - q;
+            }
         }
     }
-    return path.L;
+}
+
+std::optional<SDTree::Guide> VolPathIntegrator::LeafAt(PathState &path, Point3f p, Float expectedOverMean) const {
+    if (!guide)
+        return {};
+    SDTree::Guide leaf = guide->LeafAt(p);
+    if (path.pixelEstimate < 0)
+        path.pixelEstimate = expectedOverMean * leaf.directions.MeanRadiance();
+    return leaf;
+}
+
+bool VolPathIntegrator::ScatterAtSurface(PathState &path, const SurfaceInteraction &si, const BSDF &bsdf,
+                                         const PathGuide::VertexGuide &vertex, Sampler &sampler,
+                                         BSDFSample *sample) const {
+    const Vector3f wo = si.wo, ns(si.shading.n);
+    if (!guide) {
+        Float u = sampler.Get1D();
+        pstd::optional<BSDFSample> bs = bsdf.Sample_f(wo, u, sampler.Get2D());
+        if (!bs)
+            return false;
+        path.beta *= bs->f * AbsDot(bs->wi, ns) / bs->pdf;
+        path.r_l = path.r_u / (bs->pdfIsProportional ? bsdf.PDF(wo, bs->wi) : bs->pdf);
+        *sample = *bs;
+    } else {
+        pstd::optional<PathGuide::Scatter> scatter = PathGuide::SampleBSDF(bsdf, vertex, wo, sampler);
+        if (!scatter)
+            return false;
+        const SampledSpectrum gain = scatter->weight * AbsDot(scatter->wi, ns);
+        path.beta *= gain;
+        path.r_l = path.r_u / scatter->pdf;
+        *sample = scatter->sample;
+        if (path.record && !sample->IsSpecular())
+            AddRecordedVertex(path, si.p, vertex, *scatter, gain);
+    }
+    path.specularBounce = sample->IsSpecular();
+    path.anyNonSpecularBounces |= !sample->IsSpecular();
+    if (sample->IsTransmission())
+        path.etaScale *= Sqr(sample->eta);
+    path.ray = si.SpawnRay(path.ray, sample->wi, sample->flags, sample->eta);
+    return true;
+}
+
+bool VolPathIntegrator::ScatterInMedium(PathState &path, const MediumInteraction &mi,
+                                        const PathGuide::VertexGuide &vertex, Sampler &sampler) const {
+    Vector3f wi;
+    if (!guide) {
+        std::optional<PhaseFunctionSample> ps = mi.phase.Sample_p(mi.wo, sampler.Get2D());
+        if (!ps || ps->pdf == 0)
+            return false;
+        path.beta *= ps->p / ps->pdf;
+        path.r_l = path.r_u / ps->pdf;
+        wi = ps->wi;
+    } else {
+        pstd::optional<PathGuide::Scatter> scatter = PathGuide::SamplePhase(mi.phase, vertex, mi.wo, sampler);
+        if (!scatter)
+            return false;
+        path.beta *= scatter->weight;
+        path.r_l = path.r_u / scatter->pdf;
+        wi = scatter->wi;
+        if (path.record)
+            AddRecordedVertex(path, mi.p, vertex, *scatter, scatter->weight);
+    }
+    path.prevCtx = LightSampleContext(mi.p, Normal3f(), Normal3f());
+    path.ray = mi.SpawnRay(wi);
+    path.specularBounce = false;
+    path.anyNonSpecularBounces = true;
+    return true;
+}
+
+void VolPathIntegrator::AddRecordedVertex(PathState &path, Point3f p, const PathGuide::VertexGuide &vertex,
+                                          const PathGuide::Scatter &scatter, const SampledSpectrum &gain) const {
+    // The path's throughput past the vertex: what later contributions are divided by, so that
+    // they become the radiance that arrived along wi.
+    SampledSpectrum throughput = path.beta / MISDenominator(path.r_u);
+    path.record->push_back(PathGuide::Vertex{p, scatter.wi, scatter.pdf, throughput, SampledSpectrum(0.f),
+                                             vertex.leaf, scatter.pdfOwn, scatter.pdfGuide, gain});
 }
 
 SampledSpectrum VolPathIntegrator::SampleLdAtSurface(const SurfaceInteraction &si, const BSDF &bsdf,
+                                                     const PathGuide::VertexGuide &vertex,
                                                      const SampledWavelengths &lambda,
                                                      Sampler &sampler, const PathState &path,
                                                      RayCounts &rays) const {
     Vector3f ns(si.shading.n);
     auto scatter = [&](Vector3f wi) {
-        return std::pair(bsdf.f(si.wo, wi) * AbsDot(wi, ns), bsdf.PDF(si.wo, wi));
+        return std::pair(bsdf.f(si.wo, wi) * AbsDot(wi, ns), vertex.PDF(bsdf.PDF(si.wo, wi), wi));
     };
     auto spawnTo = [&](Point3f pLight) { return si.SpawnRayTo(pLight); };
     return SampleLd(LightSampleContext(si), scatter, spawnTo, lambda, sampler, path.beta, path.r_u,
@@ -142,7 +235,7 @@ bool VolPathIntegrator::ScatterSubsurface(PathState &path, const SurfaceInteract
     path.anyNonSpecularBounces = true;
     path.prevCtx = LightSampleContext(pi);
     if (!scene.lights.empty())
-        path.L += SampleLdAtSurface(pi, Sw, lambda, sampler, path, rays);
+        path.Add(SampleLdAtSurface(pi, Sw, PathGuide::VertexGuide{}, lambda, sampler, path, rays));
     Float u = sampler.Get1D();
     pstd::optional<BSDFSample> bs = Sw.Sample_f(pi.wo, u, sampler.Get2D());
     if (!bs)
@@ -179,7 +272,7 @@ VolPathIntegrator::MediumOutcome VolPathIntegrator::SampleMedium(PathState &path
                 SampledSpectrum betap = path.beta * T_maj / pdf;
                 SampledSpectrum r_e = path.r_u * sigma_maj * T_maj / pdf;
                 if (r_e)
-                    path.L += betap * mp.sigma_a * mp.Le / MISDenominator(r_e);
+                    path.Add(betap * mp.sigma_a * mp.Le / MISDenominator(r_e));
             }
             Float pAbsorb = mp.sigma_a[0] / sigma_maj[0];
             Float pScatter = mp.sigma_s[0] / sigma_maj[0];
@@ -202,27 +295,19 @@ VolPathIntegrator::MediumOutcome VolPathIntegrator::SampleMedium(PathState &path
                 if (!path.beta || !path.r_u)
                     return false;
                 MediumInteraction mi{p, -ray.d / Length(ray.d), ray.medium, mp.phase, ray.time};
+                const std::optional<SDTree::Guide> leaf = LeafAt(path, p, 1);
+                const PathGuide::VertexGuide vertex = leaf ? PathGuide::InMedium(*leaf) : PathGuide::VertexGuide{};
                 if (!scene.lights.empty()) {
                     auto scatter = [&](Vector3f wi) {
                         Float ph = mi.phase.p(mi.wo, wi);
-                        return std::pair(SampledSpectrum(ph), ph);
+                        return std::pair(SampledSpectrum(ph), vertex.PDF(ph, wi));
                     };
                     auto spawnTo = [&](Point3f pLight) { return mi.SpawnRayTo(pLight); };
-                    path.L += SampleLd(LightSampleContext(p, Normal3f(), Normal3f()), scatter, spawnTo, lambda, sampler, path.beta, path.r_u,
-                                       rays);
+                    path.Add(SampleLd(LightSampleContext(p, Normal3f(), Normal3f()), scatter, spawnTo, lambda,
+                                      sampler, path.beta, path.r_u, rays));
                 }
-                std::optional<PhaseFunctionSample> ps = mi.phase.Sample_p(mi.wo, sampler.Get2D());
-                if (!ps || ps->pdf == 0) {
-                    terminated = true;
-                    return false;
-                }
-                path.beta *= ps->p / ps->pdf;
-                path.r_l = path.r_u / ps->pdf;
-                path.prevCtx = LightSampleContext(p, Normal3f(), Normal3f());
-                path.ray = mi.SpawnRay(ps->wi);
-                path.specularBounce = false;
-                path.anyNonSpecularBounces = true;
-                scattered = true;
+                scattered = ScatterInMedium(path, mi, vertex, sampler);
+                terminated = !scattered;
                 return false;
             }
             SampledSpectrum sigma_n = ClampZero(sigma_maj - mp.sigma_a - mp.sigma_s);
@@ -248,13 +333,13 @@ void VolPathIntegrator::AddEmitted(PathState &path, SampledSpectrum Le, int ligh
     if (!Le)
         return;
     if (path.depth == 0 || path.specularBounce) {
-        path.L += path.beta * Le / MISDenominator(path.r_u);
+        path.Add(path.beta * Le / MISDenominator(path.r_u));
         return;
     }
     const Light &light = scene.lights[lightIndex];
     Float p_l = scene.lightSampler.PMF(path.prevCtx, lightIndex) *
                 light.PDF_Li(path.prevCtx, path.ray.d, true);
-    path.L += path.beta * Le / MISDenominator(path.r_u + path.r_l * p_l);
+    path.Add(path.beta * Le / MISDenominator(path.r_u + path.r_l * p_l));
 }
 
 template <typename Scatter, typename SpawnTo>
@@ -284,6 +369,11 @@ SampledSpectrum VolPathIntegrator::SampleLd(const LightSampleContext &ctx, Scatt
     r_u *= r_p * scatterPDF;
     bool delta = light.Type() == LightType::DeltaPosition ||
                  light.Type() == LightType::DeltaDirection;
+    // A delta light's direction has no density for the tree to learn from. The record is the
+    // radiance over the light's density, weighted by the balance heuristic.
+    if (guide && guide->Recording() && !delta)
+        guide->RecordAt(ctx.p, ls->wi,
+                        Luminance(T_ray * ls->L, lambda) * MISDenominator(r_p) / MISDenominator(r_l + r_u));
     return beta * f_hat * T_ray * ls->L / MISDenominator(delta ? r_l : r_l + r_u);
 }
 

@@ -9,9 +9,17 @@
 // noise) and, at emitters, the balance heuristic between BSDF or phase sampling and light
 // sampling, as pbrt-v4 combines them. Under a subsurface material's boundary, light leaves
 // through the BSSRDF's exit points, as pbrt-v4's volpath (and only it) renders them.
+//
+// With a guide it is guidedvolpath: surface and medium vertices sample their direction from the
+// mixture of BSDF or phase function and the learned distribution (pathguide.h), whose density the
+// rescaled probabilities carry, Russian roulette follows the radiance learned along the path
+// (PathGuide::SurvivalProbability), and paths record what arrived while training (subsurface
+// exits are neither guided nor recorded). Without one, it is pbrt-v4's volpath, sample for
+// sample.
 #pragma once
 
 #include "pbrt_ext/integrators/path.h"
+#include "pbrt_ext/integrators/pathguide.h"
 #include "pbrt_ext/interaction.h"
 #include "pbrt_ext/materials/bsdf.h"
 #include "pbrt_ext/materials/bssrdf.h"
@@ -25,8 +33,8 @@ class Scene;
 class VolPathIntegrator {
   public:
     // options.strategy must be MIS (volpath combines its estimators only that way).
-    VolPathIntegrator(const Scene &scene, IntegratorOptions options)
-        : scene(scene), options(options) {}
+    VolPathIntegrator(const Scene &scene, IntegratorOptions options, std::optional<PathGuide> guide = {})
+        : scene(scene), options(options), guide(guide) {}
 
     SampledSpectrum Li(RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler,
                        RayCounts &rays) const;
@@ -40,8 +48,36 @@ class VolPathIntegrator {
         bool specularBounce = false, anyNonSpecularBounces = false;
         Float etaScale = 1;
         LightSampleContext prevCtx;
+        PathGuide::PathRecord *record = nullptr;  // where the guide records
+        // With a guide: the radiance its tree expects at the path's first vertex (negative until
+        // then), for its Russian roulette.
+        Float pixelEstimate = -1;
+        // Adds to the estimate, and to what arrived at the recorded vertices.
+        void Add(const SampledSpectrum &contribution) {
+            L += contribution;
+            if (record)
+                PathGuide::Arrived(*record, contribution);
+        }
     };
     enum class MediumOutcome { PassedThrough, Scattered, Terminated };
+
+    // The path from its camera ray until it ends.
+    void Trace(PathState &path, SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays) const;
+    // With a guide, its spatial leaf at p; where it is the path's first vertex, the radiance
+    // expected there (over the sphere in a medium, twice that at a surface, whose hemisphere
+    // gets it all) becomes the path's pixel estimate.
+    std::optional<SDTree::Guide> LeafAt(PathState &path, Point3f p, Float expectedOverMean) const;
+    // The direction out of a surface vertex (the mixture's with a guide, else the BSDF's alone):
+    // updates the path's throughput, its light-sampling probability and its ray; false where the
+    // path ends.
+    bool ScatterAtSurface(PathState &path, const SurfaceInteraction &si, const BSDF &bsdf,
+                          const PathGuide::VertexGuide &vertex, Sampler &sampler, BSDFSample *sample) const;
+    // The same in a medium, at mi, with the phase function.
+    bool ScatterInMedium(PathState &path, const MediumInteraction &mi, const PathGuide::VertexGuide &vertex,
+                         Sampler &sampler) const;
+    // While training: the vertex at p the path left by scatter, with its scattering weight gain.
+    void AddRecordedVertex(PathState &path, Point3f p, const PathGuide::VertexGuide &vertex,
+                           const PathGuide::Scatter &scatter, const SampledSpectrum &gain) const;
 
     // Delta tracking along the ray's medium up to tMax: medium emission, absorption, real
     // scattering (with next-event estimation and a new direction) or null scattering.
@@ -49,6 +85,7 @@ class VolPathIntegrator {
                                Sampler &sampler, RayCounts &rays) const;
     // Next-event estimation at a surface vertex with its BSDF.
     SampledSpectrum SampleLdAtSurface(const SurfaceInteraction &si, const BSDF &bsdf,
+                                      const PathGuide::VertexGuide &vertex,
                                       const SampledWavelengths &lambda, Sampler &sampler,
                                       const PathState &path, RayCounts &rays) const;
     // Subsurface scattering after the path refracted into a subsurface material at si (pbrt-v4's
@@ -62,7 +99,8 @@ class VolPathIntegrator {
     void AddEmitted(PathState &path, SampledSpectrum Le, int lightIndex) const;
     // Next-event estimation at a surface or medium vertex: one light sample, attenuated by
     // the media and interfaces on the way (ratio tracking), weighted by MIS against
-    // scatterPDF(wi). r_p is the path's rescaled probability r_u at the vertex.
+    // scatterPDF(wi). r_p is the path's rescaled probability r_u at the vertex. While training,
+    // the light's radiance, with its MIS weight over its density, is recorded at the vertex.
     template <typename Scatter, typename SpawnTo>
     SampledSpectrum SampleLd(const LightSampleContext &ctx, Scatter scatter, SpawnTo spawnTo,
                              const SampledWavelengths &lambda, Sampler &sampler,
@@ -81,6 +119,7 @@ class VolPathIntegrator {
 
     const Scene &scene;
     IntegratorOptions options;
+    std::optional<PathGuide> guide;
 };
 
 }  // namespace pbrt

@@ -424,6 +424,7 @@ void ReadParameters(const ParameterDictionary &p, const RenderOverrides &overrid
         options.photonSeed = p.GetOneInt("seed", overrides.seed);
         break;
     case IntegratorType::GuidedPath:
+    case IntegratorType::GuidedVolPath:
         options.guiding.bsdfFraction = GetInRange<Float>(p, options.type, "bsdffraction", 0.5f, 0, 1, "in [0, 1]");
         options.guiding.learnBSDFFraction = p.GetOneBool("learnbsdffraction", true);
         options.guiding.maxBytes = size_t(GetInRange(p, options.type, "guidingmemory", 256, 1, 1 << 20,
@@ -468,10 +469,10 @@ IntegratorOptions CreateIntegrator(const SceneEntity &e, const RenderOverrides &
     ReadParameters(overridden ? kNone : p, overrides, options, lightSampler);
     if (!overridden)
         p.ReportUnused();
-    if (options.type != IntegratorType::GuidedPath && !(overrides.guidingSave + overrides.guidingLoad).empty())
+    if (!IsGuided(options.type) && !(overrides.guidingSave + overrides.guidingLoad).empty())
         throw std::invalid_argument(std::string(overrides.guidingLoad.empty() ? "--guiding-save" : "--guiding-load") +
                                     ": the integrator is " + IntegratorName(options.type) +
-                                    ", which learns no guiding tree (--integrator guidedpath does)");
+                                    ", which learns no guiding tree (guidedpath and guidedvolpath do)");
     return options;
 }
 

@@ -260,7 +260,7 @@ void CheckIntegratorFits(const SceneDescription &scene, const IntegratorOptions 
     // samples for the g-buffer; mlt's splats have no camera sample for it either.
     if ((type == IntegratorType::SPPM && (film.Buckets() || film.GBuffer())) ||
         (type == IntegratorType::MLT && film.GBuffer()) ||
-        (type == IntegratorType::GuidedPath && (film.Buckets() || film.GBuffer())))
+        (IsGuided(type) && (film.Buckets() || film.GBuffer())))
         throw ParseError(scene.film.loc, "Film \"" + scene.film.name + "\" needs the radiance of "
                                          "camera samples, which " + name + " does not give: use "
                                          "Film \"rgb\"");

@@ -22,27 +22,6 @@
 
 namespace pbrt {
 
-struct GuidedPathTestAccess {
-    // Guided by directions, from the BSDF with probability bsdfFraction.
-    static pstd::optional<Vector3f> Sample(const GuidedPathIntegrator &g, const BSDF &bsdf, const DTree *directions,
-                                           Float bsdfFraction, Vector3f wo, Sampler &sampler, Float *pdf,
-                                           SampledSpectrum *weight) {
-        auto s = g.SampleScatter(bsdf, {directions, bsdfFraction, -1}, wo, sampler);
-        if (!s)
-            return {};
-        *pdf = s->pdf;
-        *weight = s->weight;
-        return s->wi;
-    }
-    static Float Survival(Float throughput, Float learned, Float pixel) {
-        return GuidedPathIntegrator::SurvivalProbability(throughput, learned, pixel);
-    }
-    static Float PDF(const GuidedPathIntegrator &g, const BSDF &bsdf, const DTree *directions, Float bsdfFraction,
-                     Vector3f wo, Vector3f wi) {
-        return g.ScatterPDF(bsdf, {directions, bsdfFraction, -1}, wo, wi);
-    }
-};
-
 namespace {
 
 using namespace testscenes;
@@ -72,12 +51,11 @@ TEST(GuidedPath, CornellBoxMeanIsThePathTracers) {
 // their expected share of the pixel, and never kills one outright (the estimator stays unbiased);
 // without an estimate it is pbrt-v4's.
 TEST(GuidedPath, RouletteFollowsTheLearnedRadiance) {
-    using A = GuidedPathTestAccess;
-    EXPECT_EQ(A::Survival(0.5f, 0, 1), 0.5f);     // nothing learned along the direction
-    EXPECT_EQ(A::Survival(0.5f, 1, 0), 0.5f);     // nothing learned at the first vertex
-    EXPECT_EQ(A::Survival(0.5f, 100, 1), 1.f);    // toward a bright opening
-    EXPECT_NEAR(A::Survival(0.5f, 0.1f, 1), 0.5f, 1e-6f);  // a tenth of the pixel's share
-    EXPECT_NEAR(A::Survival(0.5f, 1e-6f, 1), 0.05f, 1e-6f);  // the floor: a tenth of pbrt-v4's
+    EXPECT_EQ(PathGuide::SurvivalProbability(0.5f, 0, 1), 0.5f);     // nothing learned along the direction
+    EXPECT_EQ(PathGuide::SurvivalProbability(0.5f, 1, 0), 0.5f);     // nothing learned at the first vertex
+    EXPECT_EQ(PathGuide::SurvivalProbability(0.5f, 100, 1), 1.f);    // toward a bright opening
+    EXPECT_NEAR(PathGuide::SurvivalProbability(0.5f, 0.1f, 1), 0.5f, 1e-6f);  // a tenth of the pixel's share
+    EXPECT_NEAR(PathGuide::SurvivalProbability(0.5f, 1e-6f, 1), 0.05f, 1e-6f);  // the floor: a tenth of pbrt-v4's
 }
 
 // A white diffuse sphere in a uniform environment reflects it all: every pixel is the
@@ -124,27 +102,22 @@ TEST(GuidedPath, TheMixtureFollowsTheDensityItReports) {
     // A diffuse floor's BSDF at the middle of the floor, seen from above.
     BSDF bsdf(Normal3f(0, 1, 0), Vector3f(1, 0, 0), DiffuseBxDF(SampledSpectrum(0.5f)));
     Vector3f wo = Normalize(Vector3f(0.2f, 1, -0.3f));
-    GuidedPathIntegrator guided(*scene, scene->integratorOptions, tree, false);
     constexpr Float kFraction = 0.3f;  // a leaf's learned BSDF fraction
+    const PathGuide::VertexGuide vertex{&guide, kFraction, -1};
     Chi2Options opts;
     auto sample = [&](Point2f u, Float uc) -> pstd::optional<Vector3f> {
         Sampler s = IndependentSampler(1, 0);
         s.StartPixelSample(Point2i(int(u.x * 1e6f), int(u.y * 1e6f)), int(uc * 1e6f));
-        Float pdf;
-        SampledSpectrum weight;
-        pstd::optional<Vector3f> wi = GuidedPathTestAccess::Sample(guided, bsdf, &guide, kFraction, wo, s, &pdf,
-                                                                   &weight);
-        if (wi) {
-            // For a non-layered BSDF the reported density is the mixture's, to rounding.
-            EXPECT_NEAR(pdf, GuidedPathTestAccess::PDF(guided, bsdf, &guide, kFraction, wo, *wi), 1e-4f * pdf);
-        }
-        return wi;
+        pstd::optional<PathGuide::Scatter> scatter = PathGuide::SampleBSDF(bsdf, vertex, wo, s);
+        if (!scatter)
+            return {};
+        // For a non-layered BSDF the reported density is the mixture's, to rounding.
+        EXPECT_NEAR(scatter->pdf, vertex.PDF(bsdf.PDF(wo, scatter->wi), scatter->wi), 1e-4f * scatter->pdf);
+        return scatter->wi;
     };
     // A guided direction where the BSDF is 0 (below the floor) ends the path: no sample. The
     // directions sampled are those of the mixture where f is not 0.
-    auto pdf = [&](Vector3f wi) {
-        return bsdf.f(wo, wi) ? GuidedPathTestAccess::PDF(guided, bsdf, &guide, kFraction, wo, wi) : Float(0);
-    };
+    auto pdf = [&](Vector3f wi) { return bsdf.f(wo, wi) ? vertex.PDF(bsdf.PDF(wo, wi), wi) : Float(0); };
     opts.sampleCount = 200000;
     Chi2Result r = Chi2TestSampler(sample, pdf, opts);
     EXPECT_TRUE(r.passed) << r.message;

@@ -127,7 +127,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene,
                                          "cornell-box-randomwalk.pbrt",
                                          "cornell-box-ambientocclusion.pbrt",
                                          "cornell-box-mlt.pbrt", "caustic-fabric-mlt.pbrt",
-                                         "media-cloud-simplevolpath.pbrt"));
+                                         "media-cloud-simplevolpath.pbrt", "guiding-slit-fog.pbrt"));
 
 // Every name pbrt-v4 accepts is its own integrator: none is substituted with a warning.
 TEST(SceneLoader, EveryPbrtV4IntegratorLoadsWithoutAWarning) {
@@ -458,7 +458,7 @@ TEST(SceneLoaderErrors, MalformedCorpusGivesExactLocatedErrors) {
         // Integrators: pbrt-v4's eleven names, and parameters out of range.
         {"load_integrator_unknown.pbrt",
          ":1:1: error: unknown Integrator \"whitted\": expected path, volpath, bdpt, lightpath, sppm, "
-         "mlt, simplepath, simplevolpath, randomwalk, ambientocclusion, function or guidedpath"},
+         "mlt, simplepath, simplevolpath, randomwalk, ambientocclusion, function, guidedpath or guidedvolpath"},
         {"load_ao_maxdistance.pbrt", ":1:31: error: ambientocclusion \"maxdistance\" must be positive"},
         {"load_maxdepth_negative.pbrt", ":1:19: error: path \"maxdepth\" must be at least 0"},
         {"load_function_unknown.pbrt",

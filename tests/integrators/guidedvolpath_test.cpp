@@ -1,0 +1,128 @@
+// guidedvolpath (pbrt_ext/integrators/volpath.h with a guide, pathguide.h): unbiased, so its image of
+// the fog-filled Cornell box has volpath's per-channel mean within 4 standard errors for each of 4
+// seeds, and a white furnace of scattering medium returns the environment (within 4 standard
+// errors); in a medium, the mixture of phase function and learned directions follows the density
+// it reports (chi-square, alpha 0.01) and weighs by p / (that density); and where there are no
+// media it is guidedpath, sample for sample.
+#include "pbrt_ext/integrators/volpath.h"
+
+#include "tests/support/chi2.h"
+#include "tests/support/imagestats.h"
+#include "tests/support/scenes.h"
+
+#include "pbrt_ext/render.h"
+#include "pbrt_ext/scene.h"
+#include "pbrt_ext/scene/sceneloader.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace pbrt {
+namespace {
+
+using namespace testscenes;
+
+const std::filesystem::path kScenes = std::filesystem::path(PBRT_EXT_TEST_DATA_DIR) / "../../scenes";
+
+// scenes/media-cornell-fog.pbrt at 24 x 24 pixels, rendered by integrator.
+std::unique_ptr<Scene> FogBox(const std::string &integrator, int spp, int seed, RenderStatistics *stats = nullptr) {
+    RenderOverrides o;
+    o.integrator = integrator;
+    o.spp = spp;
+    o.seed = seed;
+    o.resolution = Point2i(24, 24);
+    o.quiet = true;
+    auto scene = LoadScene((kScenes / "media-cornell-fog.pbrt").string(), o);
+    RenderStatistics s = Render(*scene, {0, true});
+    if (stats)
+        *stats = s;
+    return scene;
+}
+
+TEST(GuidedVolPath, FogBoxMeanIsVolPathsForFourSeeds) {
+    auto reference = FogBox("volpath", 1024, 100);
+    for (int seed = 0; seed < 4; ++seed) {
+        RenderStatistics stats;
+        auto guided = FogBox("guidedvolpath", 128, seed, &stats);
+        EXPECT_THAT(stats.integratorStatistics, testing::HasSubstr("guiding: 6 training iterations, 63 samples"));
+        ChannelDifference d = MeanDifference(guided->film, reference->film);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_LT(d.Z(c), 4) << "seed " << seed << " channel " << c << ": mean difference " << d.mean[c]
+                                 << " +- " << d.standardError[c];
+    }
+}
+
+// A sphere of white (non-absorbing) medium in a uniform environment scatters it all back out:
+// every pixel is the environment's, as without the sphere.
+std::unique_ptr<Scene> MediumFurnace(bool sphere) {
+    const Point2i res(24, 24);
+    SceneBuilder builder(LookingAt(Point3f(0, 0, 4), Point3f(0, 0, 0), 30, res), BoxFilteredFilm(res),
+                         ZSobolSampler(64, res));
+    if (sphere) {
+        int m = builder.AddMedium(HomogeneousMedium(Spectrum(0.f), Spectrum(3.f), 1, Spectrum(0.f), 0, 0.7f));
+        builder.SetMediumInterface(MediumInterface(m, -1));
+        builder.AddSphere(UnitSphereAt(Point3f(0, 0, 0)), -1);
+    }
+    builder.AddLight(UniformInfiniteLight(Spectrum(1.f), 1));
+    IntegratorOptions options;
+    options.type = IntegratorType::GuidedVolPath;
+    options.maxDepth = 1000;
+    builder.SetIntegrator(options);
+    auto scene = builder.Build();
+    Render(*scene, {0, true});
+    return scene;
+}
+
+TEST(GuidedVolPath, WhiteFurnaceReturnsTheEnvironment) {
+    auto furnace = MediumFurnace(true), empty = MediumFurnace(false);
+    RGB got = MeanRGB(furnace->film), expected = MeanRGB(empty->film);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(got[c], expected[c], 4 * StandardErrorOfMean(furnace->film, c) + 1e-4f) << "channel " << c;
+}
+
+TEST(GuidedVolPath, ThePhaseMixtureFollowsTheDensityItReports) {
+    // A learned distribution with most of its energy in one small box of the canonical square.
+    DTree guide;
+    guide.RecordBox(Bounds2f(Point2f(0.6f, 0.1f), Point2f(0.8f, 0.3f)), 10);
+    guide.RecordBox(Bounds2f(Point2f(0, 0), Point2f(1, 1)), 1);
+    guide.Finalize();
+    ASSERT_GT(guide.Energy(), 0);
+    const HGPhaseFunction phase(0.6f);
+    const Vector3f wo = Normalize(Vector3f(0.3f, -0.5f, 0.8f));
+    const PathGuide::VertexGuide vertex{&guide, 0.3f, -1};
+    auto sample = [&](Point2f u, Float uc) -> pstd::optional<Vector3f> {
+        Sampler s = IndependentSampler(1, 0);
+        s.StartPixelSample(Point2i(int(u.x * 1e6f), int(u.y * 1e6f)), int(uc * 1e6f));
+        pstd::optional<PathGuide::Scatter> scatter = PathGuide::SamplePhase(phase, vertex, wo, s);
+        if (!scatter)
+            return {};
+        const Float pdf = vertex.PDF(phase.PDF(wo, scatter->wi), scatter->wi);
+        EXPECT_NEAR(scatter->pdf, pdf, 1e-4f * pdf);
+        EXPECT_NEAR(scatter->weight[0], phase.p(wo, scatter->wi) / pdf, 1e-4f * scatter->weight[0]);
+        return scatter->wi;
+    };
+    auto pdf = [&](Vector3f wi) { return vertex.PDF(phase.PDF(wo, wi), wi); };
+    Chi2Options opts;
+    opts.sampleCount = 200000;
+    Chi2Result r = Chi2TestSampler(sample, pdf, opts);
+    EXPECT_TRUE(r.passed) << r.message;
+}
+
+TEST(GuidedVolPath, WithoutMediaIsGuidedPathSampleForSample) {
+    auto render = [](IntegratorType type) {
+        IntegratorOptions options = PathTracer(5);
+        options.type = type;
+        auto scene = CornellBox(Point2i(12, 12), 16, options);
+        Render(*scene, {1, true});  // one thread: the training's sums in one order
+        return scene;
+    };
+    auto volumetric = render(IntegratorType::GuidedVolPath), surface = render(IntegratorType::GuidedPath);
+    for (Point2i p : surface->film.PixelBounds())
+        for (int c = 0; c < 3; ++c)
+            ASSERT_EQ(volumetric->film.GetPixelRGB(p)[c], surface->film.GetPixelRGB(p)[c]);
+}
+
+}  // namespace
+}  // namespace pbrt
