@@ -2,7 +2,7 @@
 // bounds are the unit cube, then sampled and evaluated where it is read. The input is the file after
 // its magic number and bounds, which the target writes as a tree of that scene has them, so that
 // every input reaches the spatial and directional trees rather than being refused by its header.
-// Findings: a BSDF fraction outside [0, 1], a density that is negative or not finite, a sample outside the unit square or whose
+// Findings: a BSDF fraction outside (0, 1], a density that is negative or not finite, a sample outside the unit square or whose
 // density differs from the one PDF reports there, a learned radiance that is not finite.
 #include "fuzz/finding.h"
 #include "fuzz/fuzz_targets.h"
@@ -62,8 +62,8 @@ void FuzzGuidingTree(std::span<const uint8_t> data) {
             Point3f p(rng.Uniform<Float>(), rng.Uniform<Float>(), rng.Uniform<Float>());
             SDTree::Guide guide = tree.SamplingGuide(p);
             CheckDirections(guide.directions);
-            if (!(guide.bsdfFraction >= 0 && guide.bsdfFraction <= 1))
-                ReportFinding("guidingtree", "a BSDF fraction outside [0, 1]");
+            if (!(guide.bsdfFraction > 0 && guide.bsdfFraction <= 1))
+                ReportFinding("guidingtree", "a BSDF fraction outside (0, 1]");
         }
     });
 }

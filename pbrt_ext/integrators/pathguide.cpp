@@ -115,7 +115,7 @@ Float PathGuide::SurvivalProbability(Float throughput, Float learnedRadiance, Fl
     if (!(pixelEstimate > 0) || !(learnedRadiance > 0))
         return throughput;
     return std::clamp(throughput * learnedRadiance / (kSurvivalWindow * pixelEstimate),
-                      kSurvivalFloor * throughput, Float(1));
+                      std::min(kSurvivalFloor * throughput, Float(1)), Float(1));
 }
 
 void PathGuide::RecordAt(Point3f p, Vector3f w, double valueOverPDF) const {

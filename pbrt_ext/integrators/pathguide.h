@@ -36,10 +36,9 @@ class PathGuide {
         // The mixture's density of wi, given the vertex's own density of it.
         Float PDF(Float pdfOwn, Vector3f wi) const;
     };
-    // The direction sampled, its weight (f |cos| or the phase function over the density,
-    // without the cosine for a BSDF: the caller's), the mixture's density (to weigh emitters and
-    // records by) with the vertex's own and the guide's (0 without one), and the BSDF sample's
-    // flags and eta.
+    // The direction sampled, its weight (f or the phase function over the mixture's density; a
+    // BSDF's cosine is the caller's), the mixture's density (to weigh emitters and records by)
+    // with the vertex's own and the guide's (0 without one), and the BSDF sample's flags and eta.
     struct Scatter {
         Vector3f wi;
         SampledSpectrum weight;
@@ -86,7 +85,8 @@ class PathGuide {
     // (LearnedRadiance), and the radiance expected at the path's first vertex. pbrt-v4's
     // throughput roulette kills the paths that are about to reach light through an opening as
     // often as the others; their survivors, weighted up, were most of the noise where guiding
-    // helps most. Without a learned estimate it is pbrt-v4's.
+    // helps most. Without a learned estimate it is pbrt-v4's (the throughput, which callers roll
+    // only below 1).
     static Float SurvivalProbability(Float throughput, Float learnedRadiance, Float pixelEstimate);
     // DTree::Radiance of w, from the learned distribution's density of it (per steradian).
     static Float LearnedRadiance(const DTree &learned, Float pdfLearned) {

@@ -442,8 +442,8 @@ SDTree SDTree::Read(const std::string &path, const Bounds3f &sceneBounds, SDTree
             auto leaf = std::make_unique<Leaf>();
             leaf->sampling = DTree::Read(in);
             leaf->bsdfFraction = Get<Float>(in, "a leaf's BSDF fraction");
-            if (!(leaf->bsdfFraction >= 0 && leaf->bsdfFraction <= 1))
-                throw std::runtime_error("a leaf's BSDF fraction is outside [0, 1]");
+            if (!(leaf->bsdfFraction > 0 && leaf->bsdfFraction <= 1))
+                throw std::runtime_error("a leaf's BSDF fraction is outside (0, 1]");
             leaf->building = leaf->sampling.Refined(options.directionalThreshold, options.maxDirectionalDepth);
             tree.leaves.push_back(std::move(leaf));
         }

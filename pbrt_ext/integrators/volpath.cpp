@@ -13,14 +13,14 @@ SampledSpectrum VolPathIntegrator::Li(RayDifferential ray, SampledWavelengths &l
                                       RayCounts &rays) const {
     PathState path;
     path.ray = ray;
-    thread_local PathGuide::PathRecord vertices;
     if (guide && guide->Recording()) {
+        thread_local PathGuide::PathRecord vertices;  // one per thread, its storage reused
         vertices.clear();
         path.record = &vertices;
     }
     Trace(path, lambda, sampler, rays);
     if (path.record)
-        guide->Commit(vertices, lambda);
+        guide->Commit(*path.record, lambda);
     return path.L;
 }
 

@@ -13,9 +13,9 @@
 // With a guide it is guidedvolpath: surface and medium vertices sample their direction from the
 // mixture of BSDF or phase function and the learned distribution (pathguide.h), whose density the
 // rescaled probabilities carry, Russian roulette follows the radiance learned along the path
-// (PathGuide::SurvivalProbability), and paths record what arrived while training (subsurface
-// exits are neither guided nor recorded). Without one, it is pbrt-v4's volpath, sample for
-// sample.
+// (PathGuide::SurvivalProbability), and paths record what arrived while training (a subsurface
+// exit is not guided, and only its next-event estimation records). Without one, it is pbrt-v4's
+// volpath, sample for sample.
 #pragma once
 
 #include "pbrt_ext/integrators/path.h"

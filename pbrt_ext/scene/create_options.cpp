@@ -425,7 +425,8 @@ void ReadParameters(const ParameterDictionary &p, const RenderOverrides &overrid
         break;
     case IntegratorType::GuidedPath:
     case IntegratorType::GuidedVolPath:
-        options.guiding.bsdfFraction = GetInRange<Float>(p, options.type, "bsdffraction", 0.5f, 0, 1, "in [0, 1]");
+        options.guiding.bsdfFraction = GetInRange<Float>(p, options.type, "bsdffraction", 0.5f, kTiny, 1,
+                                                         "in (0, 1]");
         options.guiding.learnBSDFFraction = p.GetOneBool("learnbsdffraction", true);
         options.guiding.maxBytes = size_t(GetInRange(p, options.type, "guidingmemory", 256, 1, 1 << 20,
                                                      "at least 1 (MB)")) << 20;

@@ -2,22 +2,26 @@
 // the fog-filled Cornell box has volpath's per-channel mean within 4 standard errors for each of 4
 // seeds, and a white furnace of scattering medium returns the environment (within 4 standard
 // errors); in a medium, the mixture of phase function and learned directions follows the density
-// it reports (chi-square, alpha 0.01) and weighs by p / (that density); and where there are no
-// media it is guidedpath, sample for sample.
+// it reports (chi-square, alpha 0.01) and weighs by p / (that density); paths that scatter only
+// in a medium teach the tree; a BSDF fraction of 0 is refused; and where there are no media it
+// renders as guidedpath.
 #include "pbrt_ext/integrators/volpath.h"
 
 #include "tests/support/chi2.h"
 #include "tests/support/imagestats.h"
+#include "tests/support/scenefolder.h"
 #include "tests/support/scenes.h"
 
 #include "pbrt_ext/render.h"
 #include "pbrt_ext/scene.h"
 #include "pbrt_ext/scene/sceneloader.h"
+#include "pbrt_ext/util/error.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 namespace pbrt {
 namespace {
@@ -54,9 +58,9 @@ TEST(GuidedVolPath, FogBoxMeanIsVolPathsForFourSeeds) {
     }
 }
 
-// A sphere of white (non-absorbing) medium in a uniform environment scatters it all back out:
-// every pixel is the environment's, as without the sphere.
-std::unique_ptr<Scene> MediumFurnace(bool sphere) {
+// A sphere of white (non-absorbing) medium in a uniform environment, or the environment alone,
+// rendered by guidedvolpath where render.
+std::unique_ptr<Scene> MediumFurnace(bool sphere, bool render = true) {
     const Point2i res(24, 24);
     SceneBuilder builder(LookingAt(Point3f(0, 0, 4), Point3f(0, 0, 0), 30, res), BoxFilteredFilm(res),
                          ZSobolSampler(64, res));
@@ -71,10 +75,13 @@ std::unique_ptr<Scene> MediumFurnace(bool sphere) {
     options.maxDepth = 1000;
     builder.SetIntegrator(options);
     auto scene = builder.Build();
-    Render(*scene, {0, true});
+    if (render)
+        Render(*scene, {0, true});
     return scene;
 }
 
+// The sphere scatters the environment all back out: every pixel is the environment's, as without
+// the sphere.
 TEST(GuidedVolPath, WhiteFurnaceReturnsTheEnvironment) {
     auto furnace = MediumFurnace(true), empty = MediumFurnace(false);
     RGB got = MeanRGB(furnace->film), expected = MeanRGB(empty->film);
@@ -110,7 +117,40 @@ TEST(GuidedVolPath, ThePhaseMixtureFollowsTheDensityItReports) {
     EXPECT_TRUE(r.passed) << r.message;
 }
 
-TEST(GuidedVolPath, WithoutMediaIsGuidedPathSampleForSample) {
+// The furnace's sphere is an interface without a surface: its paths scatter only in the medium,
+// so what the tree learns there comes from medium vertices and their next-event estimation.
+TEST(GuidedVolPath, PathsThatScatterOnlyInAMediumTeachTheTree) {
+    auto scene = MediumFurnace(true, false);
+    SDTree tree(scene->aggregate.WorldBound());
+    ASSERT_EQ(tree.SamplingTree(Point3f(0, 0, 0)).Energy(), 0);
+    VolPathIntegrator learner(*scene, scene->integratorOptions, PathGuide(tree, true));
+    Sampler sampler = IndependentSampler(1, 5);
+    RayCounts rays;
+    for (int i = 0; i < 2000; ++i) {
+        sampler.StartPixelSample(Point2i(0, 0), i);
+        SampledWavelengths lambda = SampledWavelengths::SampleVisible(sampler.Get1D());
+        Float dx = sampler.Get1D() - 0.5f, dy = sampler.Get1D() - 0.5f;
+        learner.Li(RayDifferential(Ray(Point3f(0, 0, 4), Normalize(Vector3f(0.3f * dx, 0.3f * dy, -1)))), lambda,
+                   sampler, rays);
+    }
+    tree.Refine(0);
+    EXPECT_GT(tree.SamplingTree(Point3f(0, 0, 0)).Energy(), 0);
+}
+
+// Sampling only from the learned distribution would never find light from directions where it
+// has no density: the image would be biased, so the scene's fraction must be above 0.
+TEST(GuidedVolPath, RefusesABSDFFractionOfZero) {
+    const std::filesystem::path file = TestFolder("pbrt_ext_guidedvolpath_test") / "zero.pbrt";
+    std::ofstream(file) << "Camera \"perspective\"\nIntegrator \"guidedvolpath\" \"float bsdffraction\" 0\n"
+                           "WorldBegin\nLightSource \"infinite\"\n";
+    RenderOverrides quiet;
+    quiet.quiet = true;
+    EXPECT_THAT([&] { LoadScene(file.string(), quiet); },
+                testing::ThrowsMessage<ParseError>(testing::HasSubstr("in (0, 1]")));
+}
+
+// The dispatch: without media or subsurface materials guidedvolpath's render is guidedpath's.
+TEST(GuidedVolPath, WithoutMediaRendersAsGuidedPath) {
     auto render = [](IntegratorType type) {
         IntegratorOptions options = PathTracer(5);
         options.type = type;
