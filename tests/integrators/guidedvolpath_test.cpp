@@ -146,7 +146,8 @@ TEST(GuidedVolPath, RefusesABSDFFractionOfZero) {
     RenderOverrides quiet;
     quiet.quiet = true;
     EXPECT_THAT([&] { LoadScene(file.string(), quiet); },
-                testing::ThrowsMessage<ParseError>(testing::HasSubstr("in (0, 1]")));
+                testing::ThrowsMessage<ParseError>(testing::HasSubstr("zero.pbrt:2:28: error: guidedvolpath "
+                                                                      "\"bsdffraction\" must be in (0, 1]")));
 }
 
 // The dispatch: without media or subsurface materials guidedvolpath's render is guidedpath's.
