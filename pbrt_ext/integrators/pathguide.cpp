@@ -33,7 +33,7 @@ Vector3f SampleGuide(const DTree &directions, Point2f u, Float *pdf) {
 Float PathGuide::VertexGuide::PDF(Float pdfOwn, Vector3f wi) const {
     if (!directions)
         return pdfOwn;
-    return ownFraction * pdfOwn + (1 - ownFraction) * GuidePDF(*directions, wi);
+    return Mixture(pdfOwn, GuidePDF(*directions, wi));
 }
 
 PathGuide::VertexGuide PathGuide::AtSurface(const SurfaceInteraction &si, const BSDF &bsdf,
@@ -59,8 +59,7 @@ pstd::optional<PathGuide::Scatter> PathGuide::SampleBSDF(const BSDF &bsdf, const
                                                          Vector3f wo, Sampler &sampler) {
     Float uChoice = sampler.Get1D(), uc = sampler.Get1D();
     Point2f u = sampler.Get2D();
-    const Float alpha = guide.ownFraction;
-    if (!guide.directions || uChoice < alpha) {
+    if (!guide.directions || uChoice < guide.ownFraction) {
         pstd::optional<BSDFSample> bs = bsdf.Sample_f(wo, uc, u);
         if (!bs)
             return {};
@@ -70,7 +69,7 @@ pstd::optional<PathGuide::Scatter> PathGuide::SampleBSDF(const BSDF &bsdf, const
             return Scatter{bs->wi, weight, pdfBSDF, pdfBSDF, 0, *bs};
         // One-sample MIS, balance heuristic: this strategy's share of the mixture at wi.
         Float pdfGuide = GuidePDF(*guide.directions, bs->wi);
-        Float mixture = alpha * pdfBSDF + (1 - alpha) * pdfGuide;
+        Float mixture = guide.Mixture(pdfBSDF, pdfGuide);
         if (!(mixture > 0))
             return {};
         return Scatter{bs->wi, weight * (pdfBSDF / mixture), mixture, pdfBSDF, pdfGuide, *bs};
@@ -78,7 +77,7 @@ pstd::optional<PathGuide::Scatter> PathGuide::SampleBSDF(const BSDF &bsdf, const
     Float pdfGuide;
     Vector3f wi = SampleGuide(*guide.directions, u, &pdfGuide);
     SampledSpectrum f = bsdf.f(wo, wi);
-    Float pdfBSDF = bsdf.PDF(wo, wi), mixture = alpha * pdfBSDF + (1 - alpha) * pdfGuide;
+    Float pdfBSDF = bsdf.PDF(wo, wi), mixture = guide.Mixture(pdfBSDF, pdfGuide);
     if (!f || !(mixture > 0))
         return {};
     Vector3f n = Vector3f(bsdf.LocalToRender(Vector3f(0, 0, 1)));
@@ -103,8 +102,7 @@ pstd::optional<PathGuide::Scatter> PathGuide::SamplePhase(const HGPhaseFunction 
         wi = SampleGuide(*guide.directions, u, &pdfGuide);
     }
     const Float pdfPhase = phase.PDF(wo, wi), p = phase.p(wo, wi);
-    const Float mixture =
-        guide.directions ? guide.ownFraction * pdfPhase + (1 - guide.ownFraction) * pdfGuide : pdfPhase;
+    const Float mixture = guide.directions ? guide.Mixture(pdfPhase, pdfGuide) : pdfPhase;
     if (!(mixture > 0))
         return {};
     return Scatter{wi, SampledSpectrum(p / mixture), mixture, pdfPhase, pdfGuide,

@@ -35,6 +35,10 @@ class PathGuide {
         int leaf = -1;
         // The mixture's density of wi, given the vertex's own density of it.
         Float PDF(Float pdfOwn, Vector3f wi) const;
+        // The mixture's density of a direction from its two densities (with directions).
+        Float Mixture(Float pdfOwn, Float pdfGuide) const {
+            return ownFraction * pdfOwn + (1 - ownFraction) * pdfGuide;
+        }
     };
     // The direction sampled, its weight (f or the phase function over the mixture's density; a
     // BSDF's cosine is the caller's), the mixture's density (to weigh emitters and records by)
