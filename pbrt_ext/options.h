@@ -96,6 +96,9 @@ struct FunctionOptions {
 struct GuidingOptions {
     Float bsdfFraction = 0.5f;
     bool learnBSDFFraction = true;  // per spatial leaf (integrators/bsdffraction.h)
+    // Render without guiding where a trial finds it less efficient than path tracing
+    // (integrators/guiding.h).
+    bool switchOff = true;
     size_t maxBytes = size_t(256) << 20;
     std::string saveFile, loadFile;
 };

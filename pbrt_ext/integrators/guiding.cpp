@@ -1,12 +1,14 @@
 #include "pbrt_ext/integrators/guiding.h"
 
 #include "pbrt_ext/integrators/imagetile.h"
+#include "pbrt_ext/integrators/samplemoments.h"
 #include "pbrt_ext/integrators/sdtree.h"
 #include "pbrt_ext/scene.h"
 
 #include <fmt/format.h>
 
 #include <chrono>
+#include <optional>
 
 namespace pbrt {
 
@@ -20,10 +22,43 @@ SDTreeOptions TreeOptions(const GuidingOptions &guiding) {
     return options;
 }
 
+// The trial (guiding.h) comes after this many training iterations (1 + 2 + 4 samples per pixel),
+// in place of the next iteration (8: half guided, half not).
+constexpr int kTrialAfterIterations = 3;
+// What a guided ray costs against an unguided one, rendering (the tree's lookups and the
+// mixture's densities) and training (recording too, and the BSDF fraction's candidates); rays are
+// counted instead of timed so that the decision, and with it the image, is the same on every run.
+// Seconds per ray over path's (volpath's), 2 threads: rendering with a loaded tree 1.26 on
+// scenes/cornell-box.pbrt (128×128, 64 spp), 1.24 on scenes/guiding-slit.pbrt (160×120, 256 spp),
+// 1.30 and 1.31 for guidedvolpath on scenes/media-cornell-fog.pbrt and scenes/guiding-slit-fog.pbrt
+// (160×120, 64 spp); training 2.26 and 1.69 on the first two (31 of 64 spp).
+constexpr double kGuidedRayCost = 1.25, kTrainingRayCost = 2;
+
+// How sure the trial must be that guiding is the less efficient before it switches guiding off:
+// the difference of the two estimators' variance times cost, in standard errors
+// (SampleMoments::Compare). Where path tracing struggles its variance comes from rare bright
+// paths; a trial that saw few of them underestimates it, but a few of them also spread its
+// estimate, so that an uncertain trial keeps guiding.
+constexpr double kSwitchOffZ = 2;
+
+// What the trial measured: each estimator's cost per sample (rays, a guided one counted as
+// rayCost), and how they compare (a: guided, b: unguided).
+struct Trial {
+    SampleMoments::Comparison comparison;
+    double guidedCost = 0, unguidedCost = 0;
+    double rayCost = 0;
+    int samples = 0;
+    // Guided samples' efficiency (1 / (variance × cost)) over unguided ones'.
+    double Efficiency() const { return comparison.Efficiency(guidedCost, unguidedCost); }
+    bool GuidingPays() const { return comparison.z <= kSwitchOffZ; }
+};
+
 struct Training {
     RenderStatistics render;  // of the training iterations together
     int samples = 0, iterations = 0;
     double seconds = 0;
+    std::optional<Trial> trial;
+    bool SwitchedOff() const { return trial && !trial->GuidingPays(); }
 };
 
 // The statistics of two renders, one after the other, into one film.
@@ -47,6 +82,58 @@ TileIntegrator GuidedIntegrator(const Scene &scene, SDTree &tree, bool record) {
     return GuidedPathIntegrator(scene, options, tree, record);
 }
 
+// What guiding samples in place of: volpath where there are media or subsurface materials, path
+// otherwise.
+TileIntegrator UnguidedIntegrator(const Scene &scene) {
+    const IntegratorOptions &options = scene.integratorOptions;
+    if (options.type == IntegratorType::GuidedVolPath && (!scene.media.empty() || scene.HasSubsurface()))
+        return VolPathIntegrator(scene, options);
+    return PathIntegrator(scene, options);
+}
+
+double CostPerSample(const RenderStatistics &stats, double rayCost) {
+    return rayCost * double(stats.closestRays + stats.shadowRays) / double(std::max<int64_t>(1, stats.cameraSamples));
+}
+
+// The samples per pixel that training would still take from sample index done on, iteration k
+// first, within a budget of count (Train's rule).
+int TrainingToCome(int done, int count, int k) {
+    int samples = 0;
+    for (int n = 1 << k; 2 * (done + samples + n) <= count; n *= 2)
+        samples += n;
+    return samples;
+}
+
+// What a guided ray of the rest of the render costs on average, from sample index done on within
+// a budget of count, after the trial in place of iteration k: training's cost while it trains,
+// rendering's after.
+double GuidedRayCost(int done, int count, int k) {
+    const int training = TrainingToCome(done, count, k + 1), rest = count - done;
+    return rest > 0 ? (training * kTrainingRayCost + (rest - training) * kGuidedRayCost) / rest : kGuidedRayCost;
+}
+
+// Renders samples with the tree frozen, their first half guided and the rest not, and compares the
+// two (guiding.h).
+Trial RenderTrial(Scene &scene, SDTree &tree, SampleRange samples, double rayCost, const RenderOptions &options,
+                  RenderStatistics &render) {
+    const Bounds2i pixels = scene.film.PixelBounds();
+    SampleMoments guided(pixels), unguided(pixels);
+    const int middle = samples.first + samples.Count() / 2;
+    const RenderStatistics a = RenderTiles(scene, GuidedIntegrator(scene, tree, false),
+                                           SampleRange{samples.first, middle}, options, "Trial", &guided);
+    const RenderStatistics b = RenderTiles(scene, UnguidedIntegrator(scene), SampleRange{middle, samples.last},
+                                           options, "Trial", &unguided);
+    Add(render, a);
+    Add(render, b);
+    Trial trial;
+    trial.rayCost = rayCost;
+    trial.guidedCost = CostPerSample(a, rayCost);
+    trial.unguidedCost = CostPerSample(b, 1);
+    trial.comparison = SampleMoments::Compare(guided, trial.guidedCost, unguided, trial.unguidedCost);
+    trial.samples = samples.Count();
+    return trial;
+}
+
 // Training iterations from sample index first (see the header comment); the tree learns.
 Training Train(Scene &scene, SDTree &tree, SampleRange samples, const RenderOptions &options) {
     Training training;
@@ -65,21 +152,37 @@ Training Train(Scene &scene, SDTree &tree, SampleRange samples, const RenderOpti
             break;
         const double before = elapsed();
         const int first = samples.first + training.samples;
-        Add(training.render,
-            RenderTiles(scene, GuidedIntegrator(scene, tree, true),
-                        SampleRange{first, first + n}, quiet, "Training"));
-        tree.Refine(k);
+        const SampleRange iteration{first, first + n};
+        if (k == kTrialAfterIterations && scene.integratorOptions.guiding.switchOff) {
+            const double rayCost = GuidedRayCost(training.samples + n, samples.Count(), k);
+            training.trial = RenderTrial(scene, tree, iteration, rayCost, quiet, training.render);
+        } else {
+            Add(training.render, RenderTiles(scene, GuidedIntegrator(scene, tree, true), iteration, quiet, "Training"));
+            tree.Refine(k);
+            ++training.iterations;
+        }
         training.samples += n;
-        ++training.iterations;
+        if (training.SwitchedOff())
+            break;
         lastSeconds = elapsed() - before;
     }
     training.seconds = elapsed();
     return training;
 }
 
+std::string TrialStatistics(const Trial &trial) {
+    const SampleMoments::Comparison &c = trial.comparison;
+    return fmt::format("guiding trial of {} samples per pixel: guided samples {:.2f} times as efficient as "
+                       "unguided (by {:.1f} standard errors the less efficient; relative variance {:.4g} and {:.4g}, cost {:.1f} "
+                       "and {:.1f} rays, a guided one counted as {:.2f} for the training and rendering to come), "
+                       "guiding {}\n",
+                       trial.samples, trial.Efficiency(), c.z, c.varianceA, c.varianceB, trial.guidedCost,
+                       trial.unguidedCost, trial.rayCost, trial.GuidingPays() ? "kept" : "switched off");
+}
+
 std::string TreeStatistics(const SDTree &tree, const Training &training) {
     SDTree::Statistics s = tree.Stats();
-    return fmt::format("guiding: {} training iterations, {} samples per pixel, {:.3f} s\n"
+    return (training.trial ? TrialStatistics(*training.trial) : "") + fmt::format("guiding: {} training iterations, {} samples per pixel, {:.3f} s\n"
                        "guiding tree: {} spatial nodes, {} leaves, {} directional nodes (depth up to {}), "
                        "{:.1f} MB\n",
                        training.iterations, training.samples, training.seconds, s.spatialNodes, s.leaves,
@@ -102,7 +205,9 @@ RenderStatistics RenderGuided(Scene &scene, SampleRange samples, const RenderOpt
     if (options.timeLimitSeconds > 0)
         final.timeLimitSeconds = std::max(1e-3, options.timeLimitSeconds - training.seconds);
     const SampleRange rest{samples.first + training.samples, samples.last};
-    RenderStatistics stats = RenderTiles(scene, GuidedIntegrator(scene, tree, false), rest, final, "Rendering");
+    RenderStatistics stats =
+        RenderTiles(scene, training.SwitchedOff() ? UnguidedIntegrator(scene) : GuidedIntegrator(scene, tree, false),
+                    rest, final, "Rendering");
     RenderStatistics total = training.render;
     Add(total, stats);
     total.seconds = training.seconds + stats.seconds;

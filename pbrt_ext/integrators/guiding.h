@@ -5,6 +5,18 @@
 // stay in the image: each is unbiased, so that their sum is (weighting them by sample count, not
 // by inverse variance, which would estimate its weights from the same noisy images). Under a
 // time limit, training stops at half of it.
+// Guiding switches itself off where it costs more than it gains (the Cornell box: a guided
+// sample costs some 1.8 times a path-traced one, and the guide lowers the variance little). A
+// trial takes the place of the fourth training iteration, after 7 samples per pixel: of its 8,
+// the first 4 sample with the tree learned so far (frozen) and the other 4 without guiding (path,
+// or volpath where guidedvolpath renders media). It compares the two by relative variance
+// (samplemoments.h) times cost, in rays, a guided ray weighing what the training and rendering
+// still to come cost per ray (fixed measured factors: counted, not timed, so that a seed gives
+// one image). Where guiding is the less efficient by more than two standard errors, the rest of
+// the budget renders without it; an uncertain trial keeps it. The trial cannot see light that
+// neither half found, and its tree is young: on the hard scenes it keeps guiding, mostly
+// narrowly. "bool switchoff" false leaves guiding on; under 30 samples per pixel there is no
+// trial.
 // With --guiding-load there is no training: the image is rendered with the tree read, so sample
 // slices are exact and merge (scripts/render-distributed trains once); --guiding-save writes the
 // trained tree.

@@ -1,6 +1,7 @@
 #include "pbrt_ext/integrators/imagetile.h"
 
 #include "pbrt_ext/film/pixelstatistics.h"
+#include "pbrt_ext/integrators/samplemoments.h"
 #include "pbrt_ext/scene.h"
 #include "pbrt_ext/util/progressreporter.h"
 
@@ -87,10 +88,17 @@ class PixelStatisticsScope {
     std::chrono::steady_clock::time_point start;
 };
 
+// A sample's value as image comparisons see it: the mean of its output RGB (scripts/compare-pbrt-v4's
+// relMSE averages over the channels).
+Float MeanOutputRGB(const RGBFilm &film, const SampledSpectrum &L, const SampledWavelengths &lambda) {
+    const RGB rgb = film.OutputRGBFromSensorRGB() * film.Sensor().ToSensorRGB(L, lambda);
+    return (rgb.r + rgb.g + rgb.b) / 3;
+}
+
 // Samples [first, last) of every pixel of the tile, each pixel's in index order.
 template <typename Integrator>
 void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile, int first,
-                int last, ThreadCounts &counts, PixelStatistics *stats) {
+                int last, ThreadCounts &counts, PixelStatistics *stats, SampleMoments *moments) {
     // Embree traverses fastest without denormals (its documentation's advice for every rendering
     // thread); set per tile since TBB owns the threads.
     _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
@@ -126,6 +134,8 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
                 visible = scene.FirstVisibleSurface(cr->ray, lambda);
             }
             scene.film.AddSample(p, L, lambda, cs.filterWeight, visible ? &*visible : nullptr);
+            if (moments)
+                moments->Add(p, cs.filterWeight * MeanOutputRGB(scene.film, L, lambda));
         }
     }
 }
@@ -138,7 +148,7 @@ Float SplatScale(const Bounds2i &pixels, int64_t cameraSamples) {
 }  // namespace
 
 RenderStatistics RenderTiles(Scene &scene, const TileIntegrator &integrator, SampleRange samples,
-                             const RenderOptions &options, const char *title) {
+                             const RenderOptions &options, const char *title, SampleMoments *moments) {
     const Bounds2i pixels = scene.film.PixelBounds();
     const std::vector<Bounds2i> tiles = Tiles(pixels);
     // Every pixel of tile t has samples [samples.first, tileSamples[t]).
@@ -156,7 +166,7 @@ RenderStatistics RenderTiles(Scene &scene, const TileIntegrator &integrator, Sam
                 return;
             std::visit([&](const auto &concrete) {
                 RenderTile(scene, concrete, tiles[t], waveStart, waveEnd, counts.local(),
-                           options.pixelStatistics);
+                           options.pixelStatistics, moments);
             }, integrator);
             tileSamples[t] = waveEnd;
             progress.Update(int64_t(tiles[t].Area()) * (waveEnd - waveStart));

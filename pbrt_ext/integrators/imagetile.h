@@ -25,9 +25,13 @@ using TileIntegrator = std::variant<PathIntegrator, VolPathIntegrator, BDPTInteg
                                     SimplePathIntegrator, SimpleVolPathIntegrator, RandomWalkIntegrator,
                                     AOIntegrator, GuidedPathIntegrator>;
 
+class SampleMoments;
+
 // Renders sample indices [samples.first, samples.last) of every pixel into the scene's film, in
-// waves (render.h's Render says how), with a progress bar titled title.
+// waves (render.h's Render says how), with a progress bar titled title; where moments is given,
+// also adds each sample's luminance to it.
 RenderStatistics RenderTiles(Scene &scene, const TileIntegrator &integrator, SampleRange samples,
-                             const RenderOptions &options, const char *title);
+                             const RenderOptions &options, const char *title,
+                             SampleMoments *moments = nullptr);
 
 }  // namespace pbrt

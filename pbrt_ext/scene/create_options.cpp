@@ -428,6 +428,7 @@ void ReadParameters(const ParameterDictionary &p, const RenderOverrides &overrid
         options.guiding.bsdfFraction = GetInRange<Float>(p, options.type, "bsdffraction", 0.5f, kTiny, 1,
                                                          "in (0, 1]");
         options.guiding.learnBSDFFraction = p.GetOneBool("learnbsdffraction", true);
+        options.guiding.switchOff = p.GetOneBool("switchoff", true);
         options.guiding.maxBytes = size_t(GetInRange(p, options.type, "guidingmemory", 256, 1, 1 << 20,
                                                      "at least 1 (MB)")) << 20;
         options.guiding.saveFile = overrides.guidingSave;

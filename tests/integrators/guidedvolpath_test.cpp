@@ -39,6 +39,7 @@ std::unique_ptr<Scene> FogBox(const std::string &integrator, int spp, int seed, 
     o.resolution = Point2i(24, 24);
     o.quiet = true;
     auto scene = LoadScene((kScenes / "media-cornell-fog.pbrt").string(), o);
+    scene->integratorOptions.guiding.switchOff = false;  // guided throughout: no trial (guiding.h)
     RenderStatistics s = Render(*scene, {0, true});
     if (stats)
         *stats = s;
@@ -73,6 +74,7 @@ std::unique_ptr<Scene> MediumFurnace(bool sphere, bool render = true) {
     IntegratorOptions options;
     options.type = IntegratorType::GuidedVolPath;
     options.maxDepth = 1000;
+    options.guiding.switchOff = false;
     builder.SetIntegrator(options);
     auto scene = builder.Build();
     if (render)
