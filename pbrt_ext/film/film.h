@@ -95,6 +95,14 @@ class RGBFilm {
         if (gbuffer && visibleSurface)
             gbuffer->Add(PixelIndex(pPixel), rgb, weight, *visibleSurface, lambda, *colorSpace);
     }
+    // The sensor's RGB of L, scaled down to maxComponentValue keeping its hue: what AddSample
+    // adds.
+    RGB ClampedSensorRGB(const SampledSpectrum &L, const SampledWavelengths &lambda) const {
+        RGB rgb = sensor.ToSensorRGB(L, lambda);
+        Float m = std::max({rgb.r, rgb.g, rgb.b});
+        if (m > maxComponentValue) rgb *= maxComponentValue / m;
+        return rgb;
+    }
     // A sample already in the sensor's RGB (sppm's pixel estimates; not into the bands).
     void AddSensorRGB(Point2i pPixel, RGB rgb, Float weight) {
         assert(InsideExclusive(pPixel, pixelBounds));
@@ -178,14 +186,6 @@ class RGBFilm {
         double rgbSum[3] = {0, 0, 0};
         double weightSum = 0;
     };
-        // The sensor's RGB of L, scaled down to maxComponentValue keeping its hue.
-    RGB ClampedSensorRGB(const SampledSpectrum &L, const SampledWavelengths &lambda) const {
-        RGB rgb = sensor.ToSensorRGB(L, lambda);
-        Float m = std::max({rgb.r, rgb.g, rgb.b});
-        if (m > maxComponentValue) rgb *= maxComponentValue / m;
-        return rgb;
-    }
-
     Bounds2i SplatBounds(Point2f pFilm) const;
     // This thread's splat sums (3 a pixel), allocated on first use; null where the splats go
     // to the shared atomic sums.

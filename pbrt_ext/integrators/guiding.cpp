@@ -4,6 +4,7 @@
 #include "pbrt_ext/integrators/samplemoments.h"
 #include "pbrt_ext/integrators/sdtree.h"
 #include "pbrt_ext/scene.h"
+#include "pbrt_ext/util/log.h"
 
 #include <fmt/format.h>
 
@@ -41,23 +42,23 @@ constexpr double kGuidedRayCost = 1.25, kTrainingRayCost = 2;
 // estimate, so that an uncertain trial keeps guiding.
 constexpr double kSwitchOffZ = 2;
 
-// What the trial measured: each estimator's cost per sample (rays, a guided one counted as
-// rayCost), and how they compare (a: guided, b: unguided).
+// What the trial measured: each estimator's cost per sample (in path rays, a guided ray counted
+// as rayCost), and how they compare (a: guided, b: unguided).
 struct Trial {
     SampleMoments::Comparison comparison;
-    double guidedCost = 0, unguidedCost = 0;
+    double guidedCostPerSample = 0, unguidedCostPerSample = 0;
     double rayCost = 0;
     int samples = 0;
     // Guided samples' efficiency (1 / (variance × cost)) over unguided ones'.
-    double Efficiency() const { return comparison.Efficiency(guidedCost, unguidedCost); }
-    bool GuidingPays() const { return comparison.z <= kSwitchOffZ; }
+    double Efficiency() const { return comparison.Efficiency(guidedCostPerSample, unguidedCostPerSample); }
+    bool GuidingPays() const { return !(comparison.z > kSwitchOffZ); }
 };
 
 struct Training {
     RenderStatistics render;  // of the training iterations together
     int samples = 0, iterations = 0;
     double seconds = 0;
-    std::optional<Trial> trial;
+    std::optional<Trial> trial;  // none where there was none, or it was cancelled
     bool SwitchedOff() const { return trial && !trial->GuidingPays(); }
 };
 
@@ -113,28 +114,32 @@ double GuidedRayCost(int done, int count, int k) {
 }
 
 // Renders samples with the tree frozen, their first half guided and the rest not, and compares the
-// two (guiding.h).
-Trial RenderTrial(Scene &scene, SDTree &tree, SampleRange samples, double rayCost, const RenderOptions &options,
-                  RenderStatistics &render) {
+// two (guiding.h); none once cancelled (then without the second half).
+std::optional<Trial> RenderTrial(Scene &scene, SDTree &tree, SampleRange samples, double rayCost,
+                                 const RenderOptions &options, RenderStatistics &render) {
     const Bounds2i pixels = scene.film.PixelBounds();
     SampleMoments guided(pixels), unguided(pixels);
     const int middle = samples.first + samples.Count() / 2;
     const RenderStatistics a = RenderTiles(scene, GuidedIntegrator(scene, tree, false),
                                            SampleRange{samples.first, middle}, options, "Trial", &guided);
+    Add(render, a);
+    if (options.Cancelled())
+        return std::nullopt;
     const RenderStatistics b = RenderTiles(scene, UnguidedIntegrator(scene), SampleRange{middle, samples.last},
                                            options, "Trial", &unguided);
-    Add(render, a);
     Add(render, b);
     Trial trial;
     trial.rayCost = rayCost;
-    trial.guidedCost = CostPerSample(a, rayCost);
-    trial.unguidedCost = CostPerSample(b, 1);
-    trial.comparison = SampleMoments::Compare(guided, trial.guidedCost, unguided, trial.unguidedCost);
+    trial.guidedCostPerSample = CostPerSample(a, rayCost);
+    trial.unguidedCostPerSample = CostPerSample(b, 1);
+    trial.comparison =
+        SampleMoments::Compare(guided, trial.guidedCostPerSample, unguided, trial.unguidedCostPerSample);
     trial.samples = samples.Count();
     return trial;
 }
 
-// Training iterations from sample index first (see the header comment); the tree learns.
+// Training iterations from sample index first, and the trial in place of one (see the header
+// comment); the tree learns.
 Training Train(Scene &scene, SDTree &tree, SampleRange samples, const RenderOptions &options) {
     Training training;
     const auto start = std::chrono::steady_clock::now();
@@ -157,7 +162,8 @@ Training Train(Scene &scene, SDTree &tree, SampleRange samples, const RenderOpti
             const double rayCost = GuidedRayCost(training.samples + n, samples.Count(), k);
             training.trial = RenderTrial(scene, tree, iteration, rayCost, quiet, training.render);
         } else {
-            Add(training.render, RenderTiles(scene, GuidedIntegrator(scene, tree, true), iteration, quiet, "Training"));
+            Add(training.render,
+                RenderTiles(scene, GuidedIntegrator(scene, tree, true), iteration, quiet, "Training"));
             tree.Refine(k);
             ++training.iterations;
         }
@@ -173,20 +179,22 @@ Training Train(Scene &scene, SDTree &tree, SampleRange samples, const RenderOpti
 std::string TrialStatistics(const Trial &trial) {
     const SampleMoments::Comparison &c = trial.comparison;
     return fmt::format("guiding trial of {} samples per pixel: guided samples {:.2f} times as efficient as "
-                       "unguided (by {:.1f} standard errors the less efficient; relative variance {:.4g} and {:.4g}, cost {:.1f} "
-                       "and {:.1f} rays, a guided one counted as {:.2f} for the training and rendering to come), "
-                       "guiding {}\n",
-                       trial.samples, trial.Efficiency(), c.z, c.varianceA, c.varianceB, trial.guidedCost,
-                       trial.unguidedCost, trial.rayCost, trial.GuidingPays() ? "kept" : "switched off");
+                       "unguided, z {:.1f} (guiding's excess of variance times cost, in standard errors); "
+                       "relative variance {:.4g} and {:.4g}, cost {:.1f} and {:.1f} path rays (a guided ray "
+                       "counted as {:.2f} for the training and rendering to come); guiding {}\n",
+                       trial.samples, trial.Efficiency(), c.z, c.varianceA, c.varianceB, trial.guidedCostPerSample,
+                       trial.unguidedCostPerSample, trial.rayCost, trial.GuidingPays() ? "kept" : "switched off");
 }
 
 std::string TreeStatistics(const SDTree &tree, const Training &training) {
     SDTree::Statistics s = tree.Stats();
-    return (training.trial ? TrialStatistics(*training.trial) : "") + fmt::format("guiding: {} training iterations, {} samples per pixel, {:.3f} s\n"
-                       "guiding tree: {} spatial nodes, {} leaves, {} directional nodes (depth up to {}), "
-                       "{:.1f} MB\n",
-                       training.iterations, training.samples, training.seconds, s.spatialNodes, s.leaves,
-                       s.directionalNodes, s.maxDirectionalDepth, double(s.bytes) / (1 << 20));
+    const std::string trial = training.trial ? TrialStatistics(*training.trial) : "";
+    return trial + fmt::format("guiding: {} training iterations{}, {} samples per pixel, {:.3f} s\n"
+                               "guiding tree: {} spatial nodes, {} leaves, {} directional nodes (depth up to {}), "
+                               "{:.1f} MB\n",
+                               training.iterations, training.trial ? " and the trial" : "", training.samples,
+                               training.seconds, s.spatialNodes, s.leaves, s.directionalNodes,
+                               s.maxDirectionalDepth, double(s.bytes) / (1 << 20));
 }
 
 }  // namespace
@@ -199,8 +207,12 @@ RenderStatistics RenderGuided(Scene &scene, SampleRange samples, const RenderOpt
     Training training;
     if (guiding.loadFile.empty())
         training = Train(scene, tree, samples, options);
-    if (!guiding.saveFile.empty())
+    if (!guiding.saveFile.empty()) {
         tree.Write(guiding.saveFile);
+        if (training.SwitchedOff() && !options.quiet)
+            Warning("guiding was switched off by its trial (\"bool switchoff\" false keeps it on): %s holds the tree "
+                    "of %d training iterations", guiding.saveFile.c_str(), training.iterations);
+    }
     RenderOptions final = options;
     if (options.timeLimitSeconds > 0)
         final.timeLimitSeconds = std::max(1e-3, options.timeLimitSeconds - training.seconds);

@@ -15,8 +15,9 @@
 // one image). Where guiding is the less efficient by more than two standard errors, the rest of
 // the budget renders without it; an uncertain trial keeps it. The trial cannot see light that
 // neither half found, and its tree is young: on the hard scenes it keeps guiding, mostly
-// narrowly. "bool switchoff" false leaves guiding on; under 30 samples per pixel there is no
-// trial.
+// narrowly. "bool switchoff" false leaves guiding on. There is no trial under 30 samples per
+// pixel, with --guiding-load, or where a time limit ends training sooner; the training cost to
+// come is predicted by the sample budget, not the time limit.
 // With --guiding-load there is no training: the image is rendered with the tree read, so sample
 // slices are exact and merge (scripts/render-distributed trains once); --guiding-save writes the
 // trained tree.

@@ -88,10 +88,10 @@ class PixelStatisticsScope {
     std::chrono::steady_clock::time_point start;
 };
 
-// A sample's value as image comparisons see it: the mean of its output RGB (scripts/compare-pbrt-v4's
-// relMSE averages over the channels).
+// A sample's value as image comparisons see it: the mean of the output RGB the film stores
+// (scripts/compare-pbrt-v4's relMSE averages over the channels).
 Float MeanOutputRGB(const RGBFilm &film, const SampledSpectrum &L, const SampledWavelengths &lambda) {
-    const RGB rgb = film.OutputRGBFromSensorRGB() * film.Sensor().ToSensorRGB(L, lambda);
+    const RGB rgb = film.OutputRGBFromSensorRGB() * film.ClampedSensorRGB(L, lambda);
     return (rgb.r + rgb.g + rgb.b) / 3;
 }
 

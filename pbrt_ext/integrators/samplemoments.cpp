@@ -1,5 +1,7 @@
 #include "pbrt_ext/integrators/samplemoments.h"
 
+#include "pbrt_ext/util/math.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,85 +11,113 @@ namespace pbrt {
 
 namespace {
 
-// The mean of a and b's samples in the square of side 2 kRadius + 1 around each pixel: an estimate of
-// the pixel's value that one sample far brighter than the rest (what path tracing's variance comes
-// from where it struggles) does not raise in proportion, as its own pixel's mean would, which would
-// weigh it down by its own square.
+// The mean of a and b's samples in the square of side 2 kRadius + 1 around each pixel: an
+// estimate of the pixel's value that one sample far brighter than the rest (what path tracing's
+// variance comes from where it struggles) does not raise in proportion, as its own pixel's mean
+// would, which would weigh it down by its own square.
 constexpr int kRadius = 3;
 
-std::vector<double> NeighbourhoodMeans(const Bounds2i &pixels, const std::vector<double> &count,
-                                       const std::vector<double> &sum) {
-    const int width = pixels.pMax.x - pixels.pMin.x, height = pixels.pMax.y - pixels.pMin.y;
-    std::vector<double> means(count.size());
+// The sums of values over the window of kRadius around each pixel along one axis: x where
+// stride is 1, y where it is the width (separable: a box's sum is the sum of its rows' sums).
+std::vector<float> WindowSums(const std::vector<float> &values, int width, int height, bool alongX) {
+    std::vector<float> sums(values.size());
+    const int length = alongX ? width : height, lines = alongX ? height : width;
+    const size_t step = alongX ? 1 : size_t(width), lineStep = alongX ? size_t(width) : 1;
+    for (int line = 0; line < lines; ++line)
+        for (int i = 0; i < length; ++i) {
+            float total = 0;
+            for (int j = std::max(0, i - kRadius); j <= std::min(length - 1, i + kRadius); ++j)
+                total += values[line * lineStep + j * step];
+            sums[line * lineStep + i * step] = total;
+        }
+    return sums;
+}
+
+std::vector<float> NeighbourhoodMeans(int width, int height, std::vector<float> count, std::vector<float> sum) {
+    count = WindowSums(WindowSums(count, width, height, true), width, height, false);
+    sum = WindowSums(WindowSums(sum, width, height, true), width, height, false);
+    for (size_t i = 0; i < sum.size(); ++i)
+        sum[i] = count[i] > 0 ? sum[i] / count[i] : 0;
+    return sum;
+}
+
+// How many standard errors the mean of the per-pixel differences is above 0, from the spread of
+// their means over blocks of SampleMoments::kBlock pixels on a side.
+double BlockZ(const std::vector<float> &difference, const std::vector<float> &counted, int width, int height) {
+    const int kBlock = SampleMoments::kBlock;
+    const int blocksX = (width + kBlock - 1) / kBlock, blocksY = (height + kBlock - 1) / kBlock;
+    std::vector<double> blockSum(size_t(blocksX) * blocksY), blockPixels(blockSum.size());
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            double n = 0, total = 0;
-            for (int v = std::max(0, y - kRadius); v <= std::min(height - 1, y + kRadius); ++v)
-                for (int u = std::max(0, x - kRadius); u <= std::min(width - 1, x + kRadius); ++u) {
-                    n += count[size_t(v) * width + u];
-                    total += sum[size_t(v) * width + u];
-                }
-            means[size_t(y) * width + x] = n > 0 ? total / n : 0;
+            const size_t i = size_t(y) * width + x, block = size_t(y / kBlock) * blocksX + x / kBlock;
+            blockSum[block] += difference[i];
+            blockPixels[block] += counted[i];
         }
-    return means;
+    double blocks = 0, mean = 0, meanOfSquares = 0;
+    for (size_t j = 0; j < blockSum.size(); ++j) {
+        if (blockPixels[j] == 0)
+            continue;
+        const double m = blockSum[j] / blockPixels[j];
+        ++blocks;
+        mean += m;
+        meanOfSquares += m * m;
+    }
+    if (blocks < 2)
+        return 0;  // no spread to judge by
+    mean /= blocks;
+    meanOfSquares /= blocks;
+    const double standardError = std::sqrt(std::max(0.0, meanOfSquares - mean * mean) / (blocks - 1));
+    if (standardError > 0)
+        return mean / standardError;
+    if (mean == 0)
+        return 0;
+    return mean > 0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
 }
 
 }  // namespace
+
+double SampleMoments::Comparison::Efficiency(double costA, double costB) const {
+    const double a = varianceA * costA, b = varianceB * costB;
+    if (a > 0)
+        return b / a;
+    return b > 0 ? std::numeric_limits<double>::infinity() : 1;
+}
+
+double SampleMoments::RelativeVariance(size_t i, double pixelValue) const {
+    const double n = count[i];
+    // The unbiased sample variance.
+    const double variance = (sumOfSquares[i] - double(sum[i]) * sum[i] / n) / (n - 1);
+    return std::max(0.0, variance) / (Sqr(pixelValue) + 0.01);
+}
 
 SampleMoments::Comparison SampleMoments::Compare(const SampleMoments &a, double costA, const SampleMoments &b,
                                                 double costB) {
     if (a.pixels != b.pixels)
         throw std::invalid_argument("SampleMoments::Compare: the two cover different pixels");
-    std::vector<double> count(a.count.size()), sum(a.count.size());
+    std::vector<float> count(a.count.size()), sum(a.count.size());
     for (size_t i = 0; i < count.size(); ++i) {
         count[i] = a.count[i] + b.count[i];
         sum[i] = a.sum[i] + b.sum[i];
     }
-    const std::vector<double> means = NeighbourhoodMeans(a.pixels, count, sum);
-    const int width = a.pixels.pMax.x - a.pixels.pMin.x, height = a.pixels.pMax.y - a.pixels.pMin.y;
-    const int blocksX = (width + kBlock - 1) / kBlock, blocksY = (height + kBlock - 1) / kBlock;
-    // Per block: the sum of a's variance times cost less b's, and the pixels counted.
-    std::vector<double> blockDifference(size_t(blocksX) * blocksY), blockPixels(blockDifference.size());
+    const std::vector<float> values = NeighbourhoodMeans(a.Width(), a.Height(), std::move(count), std::move(sum));
     Comparison comparison;
+    std::vector<float> difference(values.size()), counted(values.size());
     double pixelsCounted = 0;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            const size_t i = size_t(y) * width + x;
-            const double na = a.count[i], nb = b.count[i];
-            if (na < 2 || nb < 2)
-                continue;
-            const double weight = 1 / (means[i] * means[i] + 0.01);
-            // The unbiased sample variance of each.
-            const double va = weight * (a.sumOfSquares[i] - a.sum[i] * a.sum[i] / na) / (na - 1);
-            const double vb = weight * (b.sumOfSquares[i] - b.sum[i] * b.sum[i] / nb) / (nb - 1);
-            comparison.varianceA += va;
-            comparison.varianceB += vb;
-            ++pixelsCounted;
-            const size_t block = size_t(y / kBlock) * blocksX + x / kBlock;
-            blockDifference[block] += costA * va - costB * vb;
-            ++blockPixels[block];
-        }
+    for (size_t i = 0; i < values.size(); ++i) {
+        if (a.count[i] < 2 || b.count[i] < 2)
+            continue;
+        const double va = a.RelativeVariance(i, values[i]), vb = b.RelativeVariance(i, values[i]);
+        comparison.varianceA += va;
+        comparison.varianceB += vb;
+        difference[i] = float(costA * va - costB * vb);
+        counted[i] = 1;
+        ++pixelsCounted;
+    }
     if (pixelsCounted == 0)
         return comparison;
     comparison.varianceA /= pixelsCounted;
     comparison.varianceB /= pixelsCounted;
-    double blocks = 0, mean = 0, meanOfSquares = 0;
-    for (size_t j = 0; j < blockDifference.size(); ++j) {
-        if (blockPixels[j] == 0)
-            continue;
-        const double m = blockDifference[j] / blockPixels[j];
-        ++blocks;
-        mean += m;
-        meanOfSquares += m * m;
-    }
-    mean /= blocks;
-    meanOfSquares /= blocks;
-    if (blocks < 2)
-        return comparison;  // z = 0: no spread to judge by
-    const double standardError = std::sqrt(std::max(0.0, meanOfSquares - mean * mean) * blocks / (blocks - 1) / blocks);
-    comparison.z = standardError > 0 ? mean / standardError
-                                     : (mean > 0 ? std::numeric_limits<double>::infinity()
-                                                 : mean < 0 ? -std::numeric_limits<double>::infinity() : 0);
+    comparison.z = BlockZ(difference, counted, a.Width(), a.Height());
     return comparison;
 }
 

@@ -1,5 +1,6 @@
-// The first two moments of each pixel's sample luminances, for comparing two estimators of the
-// same image by their variance (guiding.h's trial of guiding against path tracing). A pixel
+// The first two moments of each pixel's sample values (imagetile.h), for comparing two estimators
+// of the same image by their variance (guiding.h's trial of guiding against path tracing). Sums
+// are floats: a trial adds a few samples per pixel, and at 4K each set is 100 MB. A pixel
 // belongs to one tile, which one thread renders at a time, so no two threads add to an entry at
 // once, and each pixel's sums are taken in sample order: the same for any thread count.
 #pragma once
@@ -16,7 +17,7 @@ class SampleMoments {
     explicit SampleMoments(const Bounds2i &pixels)
         : pixels(pixels), count(size_t(pixels.Area())), sum(count.size()), sumOfSquares(count.size()) {}
 
-    void Add(Point2i p, double y) {
+    void Add(Point2i p, float y) {
         const size_t i = size_t(p.y - pixels.pMin.y) * size_t(pixels.pMax.x - pixels.pMin.x) +
                          size_t(p.x - pixels.pMin.x);
         ++count[i];
@@ -26,25 +27,28 @@ class SampleMoments {
 
     // How estimator a compares with estimator b of the same image, given the cost of a sample of
     // each: the variance of one sample of each, relative to the square of the pixel's value
-    // (estimated by the mean of both around it, SampleMoments.cpp says why) plus 0.01, as relMSE
+    // (estimated by the mean of both around it: samplemoments.cpp says why) plus 0.01, as relMSE
     // weighs errors, averaged over the pixels where each took at least two samples; and how sure
     // it is that a is the less efficient (the larger variance times cost): the mean difference
     // of the two products over its standard error, from the spread of its means over blocks of
-    // kBlock × kBlock pixels. a and b must cover the same pixels.
+    // kBlock × kBlock pixels (0 with fewer than two blocks). a and b must cover the same pixels.
     struct Comparison {
         double varianceA = 0, varianceB = 0;
         double z = 0;
-        // a's efficiency (1 / (variance × cost)) over b's.
-        double Efficiency(double costA, double costB) const {
-            return varianceB * costB / (varianceA * costA);
-        }
+        // a's efficiency (1 / (variance × cost)) over b's: 1 where neither varies.
+        double Efficiency(double costA, double costB) const;
     };
     static constexpr int kBlock = 8;
     static Comparison Compare(const SampleMoments &a, double costA, const SampleMoments &b, double costB);
 
   private:
+    // Pixel i's variance of one sample over (its value squared plus 0.01); i took two or more.
+    double RelativeVariance(size_t i, double pixelValue) const;
+    int Width() const { return pixels.pMax.x - pixels.pMin.x; }
+    int Height() const { return pixels.pMax.y - pixels.pMin.y; }
+
     Bounds2i pixels;
-    std::vector<double> count, sum, sumOfSquares;
+    std::vector<float> count, sum, sumOfSquares;
 };
 
 }  // namespace pbrt
