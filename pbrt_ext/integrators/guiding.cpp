@@ -73,12 +73,19 @@ void Add(RenderStatistics &total, const RenderStatistics &next) {
     total.cancelled |= next.cancelled;
 }
 
+// Whether the scene renders by volpath, guided or not: guidedvolpath where there are media or
+// subsurface materials (elsewhere it is guidedpath, as volpath is path there).
+bool RendersVolumes(const Scene &scene) {
+    return scene.integratorOptions.type == IntegratorType::GuidedVolPath &&
+           (!scene.media.empty() || scene.HasSubsurface());
+}
+
 // The guided integrator that samples from tree, and records into it where record: guidedvolpath's
 // where there are media or subsurface materials to render, guidedpath's otherwise (as volpath is
 // path there).
 TileIntegrator GuidedIntegrator(const Scene &scene, SDTree &tree, bool record) {
     const IntegratorOptions &options = scene.integratorOptions;
-    if (options.type == IntegratorType::GuidedVolPath && (!scene.media.empty() || scene.HasSubsurface()))
+    if (RendersVolumes(scene))
         return VolPathIntegrator(scene, options, PathGuide(tree, record));
     return GuidedPathIntegrator(scene, options, tree, record);
 }
@@ -87,7 +94,7 @@ TileIntegrator GuidedIntegrator(const Scene &scene, SDTree &tree, bool record) {
 // otherwise.
 TileIntegrator UnguidedIntegrator(const Scene &scene) {
     const IntegratorOptions &options = scene.integratorOptions;
-    if (options.type == IntegratorType::GuidedVolPath && (!scene.media.empty() || scene.HasSubsurface()))
+    if (RendersVolumes(scene))
         return VolPathIntegrator(scene, options);
     return PathIntegrator(scene, options);
 }
