@@ -169,6 +169,14 @@ class RGBFilm {
         return sums;
     }
 
+    // Replaces the pixel's RGB and weight sums (not its splats): for an image whose samples count
+    // otherwise than by their filter weights alone (integrators/inversevariance.h).
+    void SetPixelSums(Point2i p, const PixelSums &sums) {
+        Pixel &pixel = pixels[PixelIndex(p)];
+        for (int c = 0; c < 3; ++c) pixel.rgbSum[c] = sums.rgb[c];
+        pixel.weightSum = sums.weight;
+    }
+
     // The weighted average in the output colour space, plus the scaled splats; black where
     // nothing landed.
     RGB GetPixelRGB(Point2i p) const { return GetPixelSums(p).ToOutputRGB(splatScale, outputRGBFromSensorRGB); }

@@ -1,6 +1,7 @@
 #include "pbrt_ext/integrators/guiding.h"
 
 #include "pbrt_ext/integrators/imagetile.h"
+#include "pbrt_ext/integrators/inversevariance.h"
 #include "pbrt_ext/integrators/samplemoments.h"
 #include "pbrt_ext/integrators/sdtree.h"
 #include "pbrt_ext/scene.h"
@@ -123,18 +124,21 @@ double GuidedRayCost(int done, int count, int k) {
 // Renders samples with the tree frozen, their first half guided and the rest not, and compares the
 // two (guiding.h); none once cancelled (then without the second half).
 std::optional<Trial> RenderTrial(Scene &scene, SDTree &tree, SampleRange samples, double rayCost,
-                                 const RenderOptions &options, RenderStatistics &render) {
+                                 const RenderOptions &options, RenderStatistics &render,
+                                 InverseVarianceCombination &combination) {
     const Bounds2i pixels = scene.film.PixelBounds();
     SampleMoments guided(pixels), unguided(pixels);
     const int middle = samples.first + samples.Count() / 2;
     const RenderStatistics a = RenderTiles(scene, GuidedIntegrator(scene, tree, false),
                                            SampleRange{samples.first, middle}, options, "Trial", &guided);
     Add(render, a);
+    combination.EndRender(guided);
     if (options.Cancelled())
         return std::nullopt;
     const RenderStatistics b = RenderTiles(scene, UnguidedIntegrator(scene), SampleRange{middle, samples.last},
                                            options, "Trial", &unguided);
     Add(render, b);
+    combination.EndRender(unguided);
     Trial trial;
     trial.rayCost = rayCost;
     trial.guidedCostPerSample = CostPerSample(a, rayCost);
@@ -146,8 +150,9 @@ std::optional<Trial> RenderTrial(Scene &scene, SDTree &tree, SampleRange samples
 }
 
 // Training iterations from sample index first, and the trial in place of one (see the header
-// comment); the tree learns.
-Training Train(Scene &scene, SDTree &tree, SampleRange samples, const RenderOptions &options) {
+// comment); the tree learns, and each render ends in combination.
+Training Train(Scene &scene, SDTree &tree, SampleRange samples, const RenderOptions &options,
+               InverseVarianceCombination &combination) {
     Training training;
     const auto start = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
@@ -167,10 +172,12 @@ Training Train(Scene &scene, SDTree &tree, SampleRange samples, const RenderOpti
         const SampleRange iteration{first, first + n};
         if (k == kTrialAfterIterations && scene.integratorOptions.guiding.switchOff) {
             const double rayCost = GuidedRayCost(training.samples + n, samples.Count(), k);
-            training.trial = RenderTrial(scene, tree, iteration, rayCost, quiet, training.render);
+            training.trial = RenderTrial(scene, tree, iteration, rayCost, quiet, training.render, combination);
         } else {
-            Add(training.render,
-                RenderTiles(scene, GuidedIntegrator(scene, tree, true), iteration, quiet, "Training"));
+            SampleMoments moments(scene.film.PixelBounds());
+            Add(training.render, RenderTiles(scene, GuidedIntegrator(scene, tree, true), iteration, quiet,
+                                             "Training", &moments));
+            combination.EndRender(moments);
             tree.Refine(k);
             ++training.iterations;
         }
@@ -193,10 +200,21 @@ std::string TrialStatistics(const Trial &trial) {
                        trial.unguidedCostPerSample, trial.rayCost, trial.GuidingPays() ? "kept" : "switched off");
 }
 
-std::string TreeStatistics(const SDTree &tree, const Training &training) {
+// The renders the image combines, each as samples per pixel and relative variance of one sample.
+std::string CombinationStatistics(const InverseVarianceCombination &combination) {
+    std::string renders;
+    for (const InverseVarianceCombination::Weighed &w : combination.Renders())
+        renders += fmt::format("{}{:.1f} spp {:.3g}", renders.empty() ? "" : ", ", w.samplesPerPixel,
+                               w.relativeVariance);
+    return fmt::format("guiding: renders combined by inverse variance (samples per pixel, relative variance of "
+                       "one sample): {}\n", renders);
+}
+
+std::string TreeStatistics(const SDTree &tree, const Training &training, const InverseVarianceCombination *combination) {
     SDTree::Statistics s = tree.Stats();
     const std::string trial = training.trial ? TrialStatistics(*training.trial) : "";
-    return trial + fmt::format("guiding: {} training iterations{}, {} samples per pixel, {:.3f} s\n"
+    const std::string combined = combination ? CombinationStatistics(*combination) : "";
+    return trial + combined + fmt::format("guiding: {} training iterations{}, {} samples per pixel, {:.3f} s\n"
                                "guiding tree: {} spatial nodes, {} leaves, {} directional nodes (depth up to {}), "
                                "{:.1f} MB\n",
                                training.iterations, training.trial ? " and the trial" : "", training.samples,
@@ -211,9 +229,11 @@ RenderStatistics RenderGuided(Scene &scene, SampleRange samples, const RenderOpt
     const Bounds3f bounds = scene.aggregate.WorldBound();
     SDTree tree = guiding.loadFile.empty() ? SDTree(bounds, TreeOptions(guiding))
                                            : SDTree::Read(guiding.loadFile, bounds, TreeOptions(guiding));
+    // With a tree read, one render: nothing to combine, and its slices merge exactly.
+    std::optional<InverseVarianceCombination> combination;
     Training training;
     if (guiding.loadFile.empty())
-        training = Train(scene, tree, samples, options);
+        training = Train(scene, tree, samples, options, combination.emplace(scene.film));
     if (!guiding.saveFile.empty()) {
         tree.Write(guiding.saveFile);
         if (training.SwitchedOff() && !options.quiet)
@@ -224,13 +244,20 @@ RenderStatistics RenderGuided(Scene &scene, SampleRange samples, const RenderOpt
     if (options.timeLimitSeconds > 0)
         final.timeLimitSeconds = std::max(1e-3, options.timeLimitSeconds - training.seconds);
     const SampleRange rest{samples.first + training.samples, samples.last};
+    std::optional<SampleMoments> moments;
+    if (combination)
+        moments.emplace(scene.film.PixelBounds());
     RenderStatistics stats =
         RenderTiles(scene, training.SwitchedOff() ? UnguidedIntegrator(scene) : GuidedIntegrator(scene, tree, false),
-                    rest, final, "Rendering");
+                    rest, final, "Rendering", moments ? &*moments : nullptr);
+    if (combination) {
+        combination->EndRender(*moments);
+        combination->Finish();
+    }
     RenderStatistics total = training.render;
     Add(total, stats);
     total.seconds = training.seconds + stats.seconds;
-    total.integratorStatistics = TreeStatistics(tree, training);
+    total.integratorStatistics = TreeStatistics(tree, training, combination ? &*combination : nullptr);
     return total;
 }
 

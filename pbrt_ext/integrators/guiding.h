@@ -2,9 +2,9 @@
 // Training iterations of 1, 2, 4, ... samples per pixel each render with the SD-tree of the last
 // (recording into the next), until they have taken half of the budget or the next would take
 // more; the rest of the budget renders with the final tree, frozen. Every iteration's samples
-// stay in the image: each is unbiased, so that their sum is (weighting them by sample count, not
-// by inverse variance, which would estimate its weights from the same noisy images). Under a
-// time limit, training stops at half of it.
+// stay in the image, each render weighted by the inverse of its variance (inversevariance.h):
+// an iteration guided by a young tree counts less than the last. Under a time limit, training
+// stops at half of it.
 // Guiding switches itself off where it costs more than it gains (the Cornell box: a guided
 // sample costs some 1.8 times a path-traced one, and the guide lowers the variance little). A
 // trial takes the place of the fourth training iteration, after 7 samples per pixel: of its 8,
@@ -18,7 +18,7 @@
 // narrowly. "bool switchoff" false leaves guiding on. There is no trial under 30 samples per
 // pixel, with --guiding-load, or where a time limit ends training sooner; the training cost to
 // come is predicted by the sample budget, not the time limit.
-// With --guiding-load there is no training: the image is rendered with the tree read, so sample
+// With --guiding-load there is no training: the image is one render with the tree read, so sample
 // slices are exact and merge (scripts/render-distributed trains once); --guiding-save writes the
 // trained tree.
 #pragma once

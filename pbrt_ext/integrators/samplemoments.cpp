@@ -121,4 +121,39 @@ SampleMoments::Comparison SampleMoments::Compare(const SampleMoments &a, double 
     return comparison;
 }
 
+std::array<std::optional<double>, 2> SampleMoments::RelativeVarianceByBlockParity() const {
+    const std::vector<float> values = NeighbourhoodMeans(Width(), Height(), count, sum);
+    std::array<double, 2> total{0, 0}, pixelsCounted{0, 0};
+    for (int y = 0; y < Height(); ++y)
+        for (int x = 0; x < Width(); ++x) {
+            const size_t i = size_t(y) * Width() + x;
+            if (count[i] < 2)
+                continue;
+            const int parity = (x / kBlock + y / kBlock) % 2;
+            total[parity] += RelativeVariance(i, values[i]);
+            ++pixelsCounted[parity];
+        }
+    std::array<std::optional<double>, 2> variances;
+    for (int parity = 0; parity < 2; ++parity)
+        if (pixelsCounted[parity] > 0)
+            variances[parity] = total[parity] / pixelsCounted[parity];
+    return variances;
+}
+
+double SampleMoments::MeanCount() const {
+    double total = 0;
+    for (float n : count) total += n;
+    return count.empty() ? 0 : total / double(count.size());
+}
+
+void SampleMoments::Add(const SampleMoments &other) {
+    if (other.pixels != pixels)
+        throw std::invalid_argument("SampleMoments::Add: the two cover different pixels");
+    for (size_t i = 0; i < count.size(); ++i) {
+        count[i] += other.count[i];
+        sum[i] += other.sum[i];
+        sumOfSquares[i] += other.sumOfSquares[i];
+    }
+}
+
 }  // namespace pbrt

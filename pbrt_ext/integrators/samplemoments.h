@@ -7,7 +7,9 @@
 
 #include "pbrt_ext/util/bounds.h"
 
+#include <array>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace pbrt {
@@ -40,6 +42,17 @@ class SampleMoments {
     };
     static constexpr int kBlock = 8;
     static Comparison Compare(const SampleMoments &a, double costA, const SampleMoments &b, double costB);
+
+    // The variance of one sample relative to the pixel's value as Compare's (the value estimated
+    // by these moments alone), averaged over the pixels that took two or more samples in the
+    // blocks of kBlock × kBlock pixels of each parity (the block's x plus y index, even or odd: a
+    // checkerboard); none where a parity has no such pixel.
+    std::array<std::optional<double>, 2> RelativeVarianceByBlockParity() const;
+    // The samples a pixel took, on average.
+    double MeanCount() const;
+    // Adds other's samples, of the same pixels, to these.
+    void Add(const SampleMoments &other);
+    const Bounds2i &Pixels() const { return pixels; }
 
   private:
     // Pixel i's variance of one sample over (its value squared plus 0.01); i took two or more.
