@@ -12,59 +12,77 @@ constexpr double kLeastVariance = 1e-12;
 
 }  // namespace
 
-InverseVarianceCombination::InverseVarianceCombination(RGBFilm &film)
-    : film(film),
-      pending(film.PixelBounds()),
-      atLastEnd(size_t(film.PixelBounds().Area())),
-      weighted(atLastEnd.size()) {}
-
 int InverseVarianceCombination::Parity(Point2i p) const {
     const Vector2i o = p - film.PixelBounds().pMin;
     return (o.x / SampleMoments::kBlock + o.y / SampleMoments::kBlock) % 2;
+}
+
+InverseVarianceCombination::Group InverseVarianceCombination::Pending() const {
+    Group group;
+    group.pixels.resize(size_t(film.PixelBounds().Area()));
+    size_t i = 0;
+    for (Point2i p : film.PixelBounds()) {
+        RGBFilm::PixelSums sums = film.GetPixelSums(p);
+        for (const Group &earlier : groups) {
+            for (int c = 0; c < 3; ++c) sums.rgb[c] -= earlier.pixels[i].rgb[c];
+            sums.weight -= earlier.pixels[i].weight;
+        }
+        for (int c = 0; c < 3; ++c) group.pixels[i].rgb[c] = float(sums.rgb[c]);
+        group.pixels[i].weight = float(sums.weight);
+        ++i;
+    }
+    return group;
 }
 
 void InverseVarianceCombination::EndRender(const SampleMoments &moments) {
     pending.Add(moments);
     if (pending.MeanCount() < 2)
         return;
-    const std::array<std::optional<double>, 2> variance = pending.RelativeVarianceByBlockParity();
-    std::array<double, 2> scale;
-    for (int parity = 0; parity < 2; ++parity) {
+    const std::array<std::optional<double>, 2> measured = pending.RelativeVarianceByBlockParity();
+    Group group = Pending();
+    for (int parity = 0; parity < 2; ++parity)
         // The other parity's variance weighs this parity's pixels; a mean count of two or more
         // leaves at least one parity with a variance.
-        const double v = variance[1 - parity].value_or(variance[parity].value_or(1));
-        scale[parity] = 1 / std::max(v, kLeastVariance);
+        group.variance[parity] = std::max(measured[1 - parity].value_or(measured[parity].value_or(0)), kLeastVariance);
+    // Earlier renders whose variance this one's floors join it.
+    while (!groups.empty() && (groups.back().variance[0] <= group.variance[0] ||
+                               groups.back().variance[1] <= group.variance[1])) {
+        const Group &earlier = groups.back();
+        for (size_t i = 0; i < group.pixels.size(); ++i) {
+            for (int c = 0; c < 3; ++c) group.pixels[i].rgb[c] += earlier.pixels[i].rgb[c];
+            group.pixels[i].weight += earlier.pixels[i].weight;
+        }
+        for (int parity = 0; parity < 2; ++parity)
+            group.variance[parity] = std::max(group.variance[parity], earlier.variance[parity]);
+        groups.pop_back();
     }
-    Fold(scale);
-    lastScale = scale;
-    const double both = variance[0] && variance[1] ? (*variance[0] + *variance[1]) / 2
-                                                   : variance[0].value_or(variance[1].value_or(0));
+    groups.push_back(std::move(group));
+    const double both = measured[0] && measured[1] ? (*measured[0] + *measured[1]) / 2
+                                                   : measured[0].value_or(measured[1].value_or(0));
     weighed.push_back({pending.MeanCount(), both});
     pending = SampleMoments(film.PixelBounds());
 }
 
-void InverseVarianceCombination::Fold(const std::array<double, 2> &scale) {
-    size_t i = 0;
-    for (Point2i p : film.PixelBounds()) {
-        const RGBFilm::PixelSums now = film.GetPixelSums(p);
-        const double s = scale[Parity(p)];
-        for (int c = 0; c < 3; ++c) weighted[i].rgb[c] += s * (now.rgb[c] - atLastEnd[i].rgb[c]);
-        weighted[i].weight += s * (now.weight - atLastEnd[i].weight);
-        for (int c = 0; c < 3; ++c) atLastEnd[i].rgb[c] = now.rgb[c];
-        atLastEnd[i].weight = now.weight;
-        ++i;
-    }
-}
-
 void InverseVarianceCombination::Finish() {
-    Fold(lastScale);
+    if (groups.empty())
+        return;
+    // A pending render (too few samples to weigh) joins the last group.
+    const Group rest = Pending();
     size_t i = 0;
     for (Point2i p : film.PixelBounds()) {
         // The weighted mean, times the film's weight sum, which stays the pixel's divisor.
+        double rgb[3] = {0, 0, 0}, weight = 0;
+        const int parity = Parity(p);
+        for (const Group &group : groups) {
+            const bool last = &group == &groups.back();
+            const double scale = 1 / group.variance[parity];
+            for (int c = 0; c < 3; ++c) rgb[c] += scale * (group.pixels[i].rgb[c] + (last ? rest.pixels[i].rgb[c] : 0));
+            weight += scale * (group.pixels[i].weight + (last ? rest.pixels[i].weight : 0));
+        }
         RGBFilm::PixelSums sums = film.GetPixelSums(p);
-        const Sums &w = weighted[i++];
-        for (int c = 0; c < 3; ++c) sums.rgb[c] = w.weight != 0 ? w.rgb[c] / w.weight * sums.weight : 0;
+        for (int c = 0; c < 3; ++c) sums.rgb[c] = weight != 0 ? rgb[c] / weight * sums.weight : 0;
         film.SetPixelSums(p, sums);
+        ++i;
     }
 }
 
