@@ -4,6 +4,7 @@
 #include "pbrt_ext/integrators/inversevariance.h"
 #include "pbrt_ext/integrators/samplemoments.h"
 #include "pbrt_ext/integrators/sdtree.h"
+#include "pbrt_ext/integrators/trainingschedule.h"
 #include "pbrt_ext/scene.h"
 #include "pbrt_ext/util/log.h"
 
@@ -27,15 +28,6 @@ SDTreeOptions TreeOptions(const GuidingOptions &guiding) {
 // The trial (guiding.h) comes after this many training iterations (1 + 2 + 4 samples per pixel),
 // in place of the next iteration (8: half guided, half not).
 constexpr int kTrialAfterIterations = 3;
-// What a guided ray costs against an unguided one, rendering (the tree's lookups and the
-// mixture's densities) and training (recording too, and the BSDF fraction's candidates); rays are
-// counted instead of timed so that the decision, and with it the image, is the same on every run.
-// Seconds per ray over path's (volpath's), 2 threads: rendering with a loaded tree 1.26 on
-// scenes/cornell-box.pbrt (128×128, 64 spp), 1.24 on scenes/guiding-slit.pbrt (160×120, 256 spp),
-// 1.30 and 1.31 for guidedvolpath on scenes/media-cornell-fog.pbrt and scenes/guiding-slit-fog.pbrt
-// (160×120, 64 spp); training 2.26 and 1.69 on the first two (31 of 64 spp).
-constexpr double kGuidedRayCost = 1.25, kTrainingRayCost = 2;
-
 // How sure the trial must be that guiding is the less efficient before it switches guiding off:
 // the difference of the two estimators' variance times cost, in standard errors
 // (SampleMoments::Compare). Where path tracing struggles its variance comes from rare bright
@@ -104,23 +96,6 @@ double CostPerSample(const RenderStatistics &stats, double rayCost) {
     return rayCost * double(stats.closestRays + stats.shadowRays) / double(std::max<int64_t>(1, stats.cameraSamples));
 }
 
-// The samples per pixel that training would still take from sample index done on, iteration k
-// first, within a budget of count (Train's rule).
-int TrainingToCome(int done, int count, int k) {
-    int samples = 0;
-    for (int n = 1 << k; 2 * (done + samples + n) <= count; n *= 2)
-        samples += n;
-    return samples;
-}
-
-// What a guided ray of the rest of the render costs on average, from sample index done on within
-// a budget of count, after the trial in place of iteration k: training's cost while it trains,
-// rendering's after.
-double GuidedRayCost(int done, int count, int k) {
-    const int training = TrainingToCome(done, count, k + 1), rest = count - done;
-    return rest > 0 ? (training * kTrainingRayCost + (rest - training) * kGuidedRayCost) / rest : kGuidedRayCost;
-}
-
 // Renders samples with the tree frozen, their first half guided and the rest not, and compares the
 // two (guiding.h); none once cancelled (then without the second half).
 std::optional<Trial> RenderTrial(Scene &scene, SDTree &tree, SampleRange samples, double rayCost,
@@ -161,8 +136,8 @@ Training Train(Scene &scene, SDTree &tree, SampleRange samples, const RenderOpti
     quiet.timeLimitSeconds = 0;
     double lastSeconds = 0;
     for (int k = 0;; ++k) {
-        const int n = 1 << k;
-        if (2 * (training.samples + n) > samples.Count() || options.Cancelled())
+        const int n = IterationSamples(k);
+        if (!IterationFits(training.samples, samples.Count(), k) || options.Cancelled())
             break;
         // Under a time limit: only while the next iteration (twice the last) fits in half of it.
         if (options.timeLimitSeconds > 0 && elapsed() + 2 * lastSeconds > options.timeLimitSeconds / 2)
@@ -171,7 +146,7 @@ Training Train(Scene &scene, SDTree &tree, SampleRange samples, const RenderOpti
         const int first = samples.first + training.samples;
         const SampleRange iteration{first, first + n};
         if (k == kTrialAfterIterations && scene.integratorOptions.guiding.switchOff) {
-            const double rayCost = GuidedRayCost(training.samples + n, samples.Count(), k);
+            const double rayCost = GuidedRayCost(training.samples + n, samples.Count(), k + 1);
             training.trial = RenderTrial(scene, tree, iteration, rayCost, quiet, training.render, combination);
         } else {
             SampleMoments moments(scene.film.PixelBounds());
