@@ -14,8 +14,8 @@
 // still to come cost per ray (fixed measured factors: counted, not timed, so that a seed gives
 // one image). Where guiding is the less efficient by more than two standard errors, the rest of
 // the budget renders without it; an uncertain trial keeps it. The trial cannot see light that
-// neither half found, and its tree is young: on the hard scenes it keeps guiding, mostly
-// narrowly. "bool switchoff" false leaves guiding on. There is no trial under 30 samples per
+// neither half found, and its tree is young: in the slit room it keeps guiding, mostly narrowly;
+// in three of the four public rooms of docs/comparison.md it switches guiding off. "bool switchoff" false leaves guiding on. There is no trial under 30 samples per
 // pixel, with --guiding-load, or where a time limit ends training sooner; the training cost to
 // come is predicted by the sample budget, not the time limit.
 // With --guiding-load there is no training: the image is one render with the tree read, so sample
