@@ -12,9 +12,16 @@ constexpr double kLeastVariance = 1e-12;
 
 }  // namespace
 
+void InverseVarianceCombination::Group::AddSums(const Group &other) {
+    for (size_t i = 0; i < pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) pixels[i].rgb[c] += other.pixels[i].rgb[c];
+        pixels[i].weight += other.pixels[i].weight;
+    }
+}
+
 int InverseVarianceCombination::Parity(Point2i p) const {
     const Vector2i o = p - film.PixelBounds().pMin;
-    return (o.x / SampleMoments::kBlock + o.y / SampleMoments::kBlock) % 2;
+    return SampleMoments::BlockParity(o.x, o.y);
 }
 
 InverseVarianceCombination::Group InverseVarianceCombination::Pending() const {
@@ -48,10 +55,7 @@ void InverseVarianceCombination::EndRender(const SampleMoments &moments) {
     while (!groups.empty() && (groups.back().variance[0] <= group.variance[0] ||
                                groups.back().variance[1] <= group.variance[1])) {
         const Group &earlier = groups.back();
-        for (size_t i = 0; i < group.pixels.size(); ++i) {
-            for (int c = 0; c < 3; ++c) group.pixels[i].rgb[c] += earlier.pixels[i].rgb[c];
-            group.pixels[i].weight += earlier.pixels[i].weight;
-        }
+        group.AddSums(earlier);
         for (int parity = 0; parity < 2; ++parity)
             group.variance[parity] = std::max(group.variance[parity], earlier.variance[parity]);
         groups.pop_back();
@@ -67,17 +71,16 @@ void InverseVarianceCombination::Finish() {
     if (groups.empty())
         return;
     // A pending render (too few samples to weigh) joins the last group.
-    const Group rest = Pending();
+    groups.back().AddSums(Pending());
     size_t i = 0;
     for (Point2i p : film.PixelBounds()) {
         // The weighted mean, times the film's weight sum, which stays the pixel's divisor.
         double rgb[3] = {0, 0, 0}, weight = 0;
         const int parity = Parity(p);
         for (const Group &group : groups) {
-            const bool last = &group == &groups.back();
             const double scale = 1 / group.variance[parity];
-            for (int c = 0; c < 3; ++c) rgb[c] += scale * (group.pixels[i].rgb[c] + (last ? rest.pixels[i].rgb[c] : 0));
-            weight += scale * (group.pixels[i].weight + (last ? rest.pixels[i].weight : 0));
+            for (int c = 0; c < 3; ++c) rgb[c] += scale * group.pixels[i].rgb[c];
+            weight += scale * group.pixels[i].weight;
         }
         RGBFilm::PixelSums sums = film.GetPixelSums(p);
         for (int c = 0; c < 3; ++c) sums.rgb[c] = weight != 0 ? rgb[c] / weight * sums.weight : 0;

@@ -62,6 +62,9 @@ class InverseVarianceCombination {
         };
         std::vector<Sums> pixels;
         std::array<double, 2> variance;
+
+        // Adds other's samples, of the same pixels, to these.
+        void AddSums(const Group &other);
     };
 
     // The film's samples since the last render ended.

@@ -129,7 +129,7 @@ std::array<std::optional<double>, 2> SampleMoments::RelativeVarianceByBlockParit
             const size_t i = size_t(y) * Width() + x;
             if (count[i] < 2)
                 continue;
-            const int parity = (x / kBlock + y / kBlock) % 2;
+            const int parity = BlockParity(x, y);
             total[parity] += RelativeVariance(i, values[i]);
             ++pixelsCounted[parity];
         }

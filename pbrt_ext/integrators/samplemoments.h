@@ -41,6 +41,9 @@ class SampleMoments {
         double Efficiency(double costA, double costB) const;
     };
     static constexpr int kBlock = 8;
+    // The parity of the block of the pixel at offset (x, y) from the first: the checkerboard
+    // RelativeVarianceByBlockParity splits the pixels by.
+    static int BlockParity(int x, int y) { return (x / kBlock + y / kBlock) % 2; }
     static Comparison Compare(const SampleMoments &a, double costA, const SampleMoments &b, double costB);
 
     // The variance of one sample relative to the pixel's value as Compare's (the value estimated

@@ -41,6 +41,10 @@ double PixelValue(const RGBFilm &film, Point2i p) {
     return sums.rgb[0] / sums.weight;
 }
 
+void ExpectEveryPixel(const RGBFilm &film, double expected, double tolerance) {
+    for (Point2i p : film.PixelBounds()) EXPECT_NEAR(PixelValue(film, p), expected, tolerance) << p.x << "," << p.y;
+}
+
 // The variance of one sample of a pixel whose samples are values, over its mean squared plus 0.01.
 double RelativeVariance(std::initializer_list<double> values) {
     double mean = 0, squares = 0;
@@ -94,7 +98,7 @@ TEST(InverseVarianceCombination, ARendersVarianceIsAtLeastALaterOnes) {
     Render(film, combination, {0.9, 1.1}, {0.9, 1.1});
     Render(film, combination, {1, 3, 1, 3}, {1, 3, 1, 3});
     combination.Finish();
-    for (Point2i p : film.PixelBounds()) EXPECT_NEAR(PixelValue(film, p), 10.0 / 6, 1e-6) << p.x << "," << p.y;
+    ExpectEveryPixel(film, 10.0 / 6, 1e-6);
     ASSERT_EQ(combination.Renders().size(), 2u);
     EXPECT_LT(combination.Renders()[0].relativeVariance, combination.Renders()[1].relativeVariance);
 }
@@ -109,7 +113,7 @@ TEST(InverseVarianceCombination, ARenderOfOneSamplePerPixelJoinsTheNext) {
     // One render of four samples: by count.
     ASSERT_EQ(combination.Renders().size(), 1u);
     EXPECT_EQ(combination.Renders()[0].samplesPerPixel, 4);
-    for (Point2i p : film.PixelBounds()) EXPECT_NEAR(PixelValue(film, p), 3.25, 1e-9) << p.x << "," << p.y;
+    ExpectEveryPixel(film, 3.25, 1e-9);
 }
 
 TEST(InverseVarianceCombination, RendersThatDoNotVaryCountBySamples) {
@@ -118,7 +122,7 @@ TEST(InverseVarianceCombination, RendersThatDoNotVaryCountBySamples) {
     Render(film, combination, {1, 1}, {1, 1});
     Render(film, combination, {3, 3, 3, 3}, {3, 3, 3, 3});
     combination.Finish();
-    for (Point2i p : film.PixelBounds()) EXPECT_NEAR(PixelValue(film, p), 7.0 / 3, 1e-9) << p.x << "," << p.y;
+    ExpectEveryPixel(film, 7.0 / 3, 1e-9);
 }
 
 TEST(InverseVarianceCombination, AFinishWithoutRendersLeavesTheFilmBlack) {
