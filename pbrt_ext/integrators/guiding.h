@@ -7,8 +7,8 @@
 // stops at half of it.
 // Guiding switches itself off where it costs more than it gains (the Cornell box: a guided
 // sample costs some 1.8 times a path-traced one, and the guide lowers the variance little). A
-// trial takes the place of the fourth training iteration, after 7 samples per pixel: of its 8,
-// the first 4 sample with the tree learned so far (frozen) and the other 4 without guiding (path,
+// trial takes the place of the third training iteration, after 3 samples per pixel: of its 4,
+// the first 2 sample with the tree learned so far (frozen) and the other 2 without guiding (path,
 // or volpath where guidedvolpath renders media). It compares the two by relative variance
 // (samplemoments.h) times cost, in rays, a guided ray weighing what the training and rendering
 // still to come cost per ray (fixed measured factors: counted, not timed, so that a seed gives
@@ -16,7 +16,7 @@
 // the budget renders without it; an uncertain trial keeps it. The trial cannot see light that
 // neither half found, and its tree is young: in the slit room it keeps guiding, mostly narrowly;
 // in three of the four public rooms of docs/comparison.md it switches guiding off.
-// "bool switchoff" false leaves guiding on. There is no trial under 30 samples per pixel, with
+// "bool switchoff" false leaves guiding on. There is no trial under 14 samples per pixel, with
 // --guiding-load, or where a time limit ends training sooner; the training cost to
 // come is predicted by the sample budget, not the time limit.
 // With --guiding-load there is no training: the image is one render with the tree read, so sample
