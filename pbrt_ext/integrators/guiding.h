@@ -15,7 +15,8 @@
 // one image). Where guiding is the less efficient by more than two standard errors, the rest of
 // the budget renders without it; an uncertain trial keeps it. The trial cannot see light that
 // neither half found, and its tree is young: in the slit room it keeps guiding, mostly narrowly;
-// in three of the four public rooms of docs/comparison.md it switches guiding off.
+// on the public rooms of docs/comparison.md (240 wide, 64 spp) it switched guiding off in 13 of 16
+// renders.
 // "bool switchoff" false leaves guiding on. There is no trial under 14 samples per pixel, with
 // --guiding-load, or where a time limit ends training sooner; the training cost to
 // come is predicted by the sample budget, not the time limit.
