@@ -10,9 +10,10 @@ GuidedPathIntegrator::GuidedPathIntegrator(const Scene &scene, const IntegratorO
                                            SDTree &tree, bool record)
     : scene(scene), options(options), guide(tree, record) {}
 
-SampledSpectrum GuidedPathIntegrator::SampleLd(const SurfaceInteraction &si, const BSDF &bsdf,
-                                               const VertexGuide &vertex, const SampledWavelengths &lambda,
-                                               Sampler &sampler, RayCounts &rays) const {
+GuidedPathIntegrator::DirectLight GuidedPathIntegrator::SampleLd(const SurfaceInteraction &si, const BSDF &bsdf,
+                                                                const VertexGuide &vertex,
+                                                                const SampledWavelengths &lambda, Sampler &sampler,
+                                                                RayCounts &rays) const {
     LightSampleContext ctx(si);
     Float uLight = sampler.Get1D();
     Point2f u = sampler.Get2D();
@@ -32,19 +33,22 @@ SampledSpectrum GuidedPathIntegrator::SampleLd(const SurfaceInteraction &si, con
         return {};
     Float pdfLight = sampled->p * ls->pdf;
     bool delta = light.Type() == LightType::DeltaPosition || light.Type() == LightType::DeltaDirection;
-    Float weight = delta ? 1 : PowerHeuristic(1, pdfLight, 1, vertex.PDF(bsdf.PDF(wo, wi), wi));
+    Float pdfBSDF = delta ? 0 : bsdf.PDF(wo, wi);
+    Float weight = delta ? 1 : PowerHeuristic(1, pdfLight, 1, vertex.PDF(pdfBSDF, wi));
     // A delta light's direction has no density for the tree to learn from.
     if (guide.Recording() && !delta)
         guide.RecordAt(si.p, wi, Luminance(ls->L * weight, lambda) / pdfLight);
-    return weight * ls->L * f / pdfLight;
+    Float pathWeight = delta ? 1 : PowerHeuristic(1, pdfLight, 1, pdfBSDF);
+    return DirectLight{weight * ls->L * f / pdfLight, pathWeight / weight};
 }
 
 SampledSpectrum GuidedPathIntegrator::Li(RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler,
-                                         RayCounts &rays) const {
+                                         RayCounts &rays, UnguidedMoment *unguided) const {
     SampledSpectrum L(0.f), beta(1.f);
     // As in PathIntegrator::Li: whether next-event estimation covered the vertex the ray leaves.
     bool lightSampled = false, anyNonSpecularBounces = false;
-    Float etaScale = 1, pdfScatter = 1, pixelEstimate = 0;
+    // pdfScatter: the mixture's density of the last direction; pdfScatterBSDF: the BSDF's.
+    Float etaScale = 1, pdfScatter = 1, pdfScatterBSDF = 1, pixelEstimate = 0;
     LightSampleContext prevCtx;
     const bool record = guide.Recording();
     thread_local PathGuide::PathRecord vertices;
@@ -54,11 +58,19 @@ SampledSpectrum GuidedPathIntegrator::Li(RayDifferential ray, SampledWavelengths
         if (record)
             PathGuide::Arrived(vertices, contribution);
     };
-    auto emitterWeight = [&](const Light &light, int index, Vector3f w) -> Float {
-        if (!lightSampled)
-            return 1;
+    // An emitter's radiance, found by the ray: weighted against next-event estimation by the
+    // mixture's density, and for the unguided moment by the BSDF's.
+    auto emitted = [&](const SampledSpectrum &Le, const Light &light, int index, Vector3f w) {
+        if (!lightSampled) {
+            add(beta * Le);
+            if (unguided)
+                unguided->Add(beta * Le);
+            return;
+        }
         Float pdfLight = scene.lightSampler.PMF(prevCtx, index) * light.PDF_Li(prevCtx, w, true);
-        return PowerHeuristic(1, pdfScatter, 1, pdfLight);
+        add(beta * Le * PowerHeuristic(1, pdfScatter, 1, pdfLight));
+        if (unguided)
+            unguided->Add(beta * Le * PowerHeuristic(1, pdfScatterBSDF, 1, pdfLight));
     };
     for (int depth = 0;; ++depth) {
         ++rays.closest;
@@ -67,7 +79,7 @@ SampledSpectrum GuidedPathIntegrator::Li(RayDifferential ray, SampledWavelengths
             for (int index : scene.infiniteLights) {
                 const Light &light = scene.lights[index];
                 if (SampledSpectrum Le = light.Le(ray, lambda))
-                    add(beta * Le * emitterWeight(light, index, ray.d));
+                    emitted(Le, light, index, ray.d);
             }
             break;
         }
@@ -75,7 +87,7 @@ SampledSpectrum GuidedPathIntegrator::Li(RayDifferential ray, SampledWavelengths
         if (si.areaLightIndex >= 0) {
             const Light &light = scene.lights[si.areaLightIndex];
             if (SampledSpectrum Le = light.L(si.p, si.n, si.uv, -ray.d, lambda))
-                add(beta * Le * emitterWeight(light, si.areaLightIndex, ray.d));
+                emitted(Le, light, si.areaLightIndex, ray.d);
         }
         scene.ComputeDifferentials(si, ray);
         std::optional<BSDF> maybeBSDF = scene.GetBSDF(si, lambda);
@@ -95,14 +107,21 @@ SampledSpectrum GuidedPathIntegrator::Li(RayDifferential ray, SampledWavelengths
         const DTree &learned = leaf.directions;
         const VertexGuide vertex = PathGuide::AtSurface(si, bsdf, leaf);
         lightSampled = IsNonSpecular(bsdf.Flags()) && !scene.lights.empty();
-        if (lightSampled)
-            add(beta * SampleLd(si, bsdf, vertex, lambda, sampler, rays));
+        if (lightSampled) {
+            const DirectLight d = SampleLd(si, bsdf, vertex, lambda, sampler, rays);
+            add(beta * d.Ld);
+            if (unguided && d.Ld)
+                unguided->Add(beta * d.Ld * d.pathOverGuidedWeight);
+        }
         pstd::optional<PathGuide::Scatter> scatter = PathGuide::SampleBSDF(bsdf, vertex, -ray.d, sampler);
         if (!scatter)
             break;
         const SampledSpectrum gain = scatter->weight * AbsDot(scatter->wi, Vector3f(si.shading.n));
         beta *= gain;
         pdfScatter = scatter->pdf;
+        pdfScatterBSDF = scatter->pdfOwn;
+        if (unguided)
+            unguided->Scattered(scatter->pdfOwn, scatter->pdf);
         bool specular = scatter->sample.IsSpecular();
         anyNonSpecularBounces |= !specular;
         if (scatter->sample.IsTransmission())
@@ -116,16 +135,20 @@ SampledSpectrum GuidedPathIntegrator::Li(RayDifferential ray, SampledWavelengths
         if (depth == 0)
             pixelEstimate = 2 * learned.MeanRadiance();  // over the hemisphere: twice the sphere's mean
         // As in the path tracer, from the third vertex on, and only while the throughput is under 1.
-        Float throughput = (beta * etaScale).MaxComponentValue();
-        if (throughput < 1 && depth > 1) {
+        if (depth <= 1)
+            continue;
+        Float throughput = (beta * etaScale).MaxComponentValue(), survival = 1;
+        if (throughput < 1) {
             // DTree::Radiance of the direction, from the density already known where guided.
             Float pdfLearned = vertex.directions ? scatter->pdfGuide : GuidePDF(learned, scatter->wi);
             Float radiance = PathGuide::LearnedRadiance(learned, pdfLearned);
-            Float survival = PathGuide::SurvivalProbability(throughput, radiance, pixelEstimate);
+            survival = PathGuide::SurvivalProbability(throughput, radiance, pixelEstimate);
             if (sampler.Get1D() >= survival)
                 break;
             beta /= survival;
         }
+        if (unguided)
+            unguided->Survived(std::min<Float>(1, unguided->PathThroughput(throughput)), survival);
     }
     if (record)
         guide.Commit(vertices, lambda);

@@ -10,11 +10,13 @@
 // direction, everything the rest of the path found; along the light's, next-event estimation's
 // radiance with its MIS weight; and at each guided vertex, what its BSDF fraction learns from.
 // Recording is the only thing that training changes: a render with a frozen tree is an ordinary
-// unbiased estimator.
+// unbiased estimator. Given an UnguidedMoment, Li also estimates the second moment of the path
+// tracer's estimate from the path it takes (unguidedmoment.h), for guiding's trial.
 #pragma once
 
 #include "pbrt_ext/integrators/path.h"
 #include "pbrt_ext/integrators/pathguide.h"
+#include "pbrt_ext/integrators/unguidedmoment.h"
 #include "pbrt_ext/options.h"
 
 namespace pbrt {
@@ -26,16 +28,21 @@ class GuidedPathIntegrator {
     // Samples from tree, and records into it where record.
     GuidedPathIntegrator(const Scene &scene, const IntegratorOptions &options, SDTree &tree, bool record);
 
-    SampledSpectrum Li(RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler,
-                       RayCounts &rays) const;
+    SampledSpectrum Li(RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays,
+                       UnguidedMoment *unguided = nullptr) const;
 
   private:
     using VertexGuide = PathGuide::VertexGuide;
 
-    // Next-event estimation at si, weighted against the mixture's density; where training, its
-    // record.
-    SampledSpectrum SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const VertexGuide &guide,
-                             const SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays) const;
+    // Next-event estimation's radiance, weighted against the mixture's density, and the ratio of
+    // the path tracer's weight (against the BSDF's density) to that weight.
+    struct DirectLight {
+        SampledSpectrum Ld;
+        Float pathOverGuidedWeight = 0;
+    };
+    // Next-event estimation at si; where training, its record.
+    DirectLight SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const VertexGuide &guide,
+                        const SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays) const;
 
     const Scene &scene;
     IntegratorOptions options;

@@ -38,9 +38,12 @@ constexpr int kTrialAfterIterations = 2;
 constexpr double kSwitchOffZ = 2;
 
 // What the trial measured: each estimator's cost per sample (in path rays, a guided ray counted
-// as rayCost), and how they compare (a: guided, b: unguided).
+// as rayCost), and how they compare (a: guided, b: unguided). guidedpath's compares with the path
+// tracer's variance as the guided samples estimate it (unguidedmoment.h), which the unguided
+// samples' own (unguidedOwnVariance) underestimates where rare paths carry the light.
 struct Trial {
     SampleMoments::Comparison comparison;
+    double unguidedOwnVariance = 0;
     double guidedCostPerSample = 0, unguidedCostPerSample = 0;
     double rayCost = 0;
     int samples = 0;
@@ -104,7 +107,7 @@ std::optional<Trial> RenderTrial(Scene &scene, SDTree &tree, SampleRange samples
                                  const RenderOptions &options, RenderStatistics &render,
                                  InverseVarianceCombination &combination) {
     const Bounds2i pixels = scene.film.PixelBounds();
-    SampleMoments guided(pixels), unguided(pixels);
+    SampleMoments guided(pixels, !RendersVolumes(scene)), unguided(pixels);
     const int middle = samples.first + samples.Count() / 2;
     const RenderStatistics a = RenderTiles(scene, GuidedIntegrator(scene, tree, false),
                                            SampleRange{samples.first, middle}, options, "Trial", &guided);
@@ -120,8 +123,12 @@ std::optional<Trial> RenderTrial(Scene &scene, SDTree &tree, SampleRange samples
     trial.rayCost = rayCost;
     trial.guidedCostPerSample = CostPerSample(a, rayCost);
     trial.unguidedCostPerSample = CostPerSample(b, 1);
-    trial.comparison =
+    const SampleMoments::Comparison direct =
         SampleMoments::Compare(guided, trial.guidedCostPerSample, unguided, trial.unguidedCostPerSample);
+    trial.unguidedOwnVariance = direct.varianceB;
+    trial.comparison = guided.EstimatesPath() ? SampleMoments::CompareWithPath(guided, trial.guidedCostPerSample,
+                                                                               trial.unguidedCostPerSample)
+                                              : direct;
     trial.samples = samples.Count();
     return trial;
 }
@@ -171,9 +178,11 @@ std::string TrialStatistics(const Trial &trial) {
     const SampleMoments::Comparison &c = trial.comparison;
     return fmt::format("guiding trial of {} samples per pixel: guided samples {:.2f} times as efficient as "
                        "unguided, z {:.1f} (guiding's excess of variance times cost, in standard errors); "
-                       "relative variance {:.4g} and {:.4g}, cost {:.1f} and {:.1f} path rays (a guided ray "
-                       "counted as {:.2f} for the training and rendering to come); guiding {}\n",
-                       trial.samples, trial.Efficiency(), c.z, c.varianceA, c.varianceB, trial.guidedCostPerSample,
+                       "relative variance {:.4g} and {:.4g} (unguided samples' own: {:.4g}), cost {:.1f} and "
+                       "{:.1f} path rays (a guided ray counted as {:.2f} for the training and rendering to come); "
+                       "guiding {}\n",
+                       trial.samples, trial.Efficiency(), c.z, c.varianceA, c.varianceB, trial.unguidedOwnVariance,
+                       trial.guidedCostPerSample,
                        trial.unguidedCostPerSample, trial.rayCost, trial.GuidingPays() ? "kept" : "switched off");
 }
 

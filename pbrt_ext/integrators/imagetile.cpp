@@ -15,6 +15,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 namespace pbrt {
@@ -95,6 +96,37 @@ Float MeanOutputRGB(const RGBFilm &film, const SampledSpectrum &L, const Sampled
     return (rgb.r + rgb.g + rgb.b) / 3;
 }
 
+// What a unit of radiance at each sampled wavelength adds to the value MeanOutputRGB gives a
+// sample of camera weight cameraWeight and filter weight filterWeight (linear in the radiance).
+SampledSpectrum ValuePerRadiance(const RGBFilm &film, const SampledSpectrum &cameraWeight, Float filterWeight,
+                                 const SampledWavelengths &lambda) {
+    SampledSpectrum perRadiance;
+    for (int i = 0; i < NSpectrumSamples; ++i) {
+        SampledSpectrum unit(0.f);
+        unit[i] = cameraWeight[i];
+        perRadiance[i] = filterWeight * MeanOutputRGB(film, unit, lambda);
+    }
+    return perRadiance;
+}
+
+// The camera ray's radiance by integrator; where it can, and moments take them, with its estimate
+// of the path tracer's second moment (unguidedmoment.h), added to moments by the caller.
+template <typename Integrator>
+SampledSpectrum Radiance(const Scene &scene, const Integrator &integrator, const CameraRayDifferential &cr,
+                         const CameraSample &cs, SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays,
+                         const SampleMoments *moments, std::optional<UnguidedMoment> &unguided) {
+    if constexpr (requires { integrator.Li(cr.ray, cs.pFilm, lambda, sampler, rays); }) {
+        return cr.weight * integrator.Li(cr.ray, cs.pFilm, lambda, sampler, rays);
+    } else {
+        if constexpr (requires { integrator.Li(cr.ray, lambda, sampler, rays, &*unguided); })
+            if (moments && moments->EstimatesPath()) {
+                unguided.emplace(ValuePerRadiance(scene.film, cr.weight, cs.filterWeight, lambda));
+                return cr.weight * integrator.Li(cr.ray, lambda, sampler, rays, &*unguided);
+            }
+        return cr.weight * integrator.Li(cr.ray, lambda, sampler, rays);
+    }
+}
+
 // Samples [first, last) of every pixel of the tile, each pixel's in index order.
 template <typename Integrator>
 void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile, int first,
@@ -118,12 +150,9 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
                                           : 1;
             pstd::optional<CameraRayDifferential> cr = scene.GenerateCameraRay(cs, differentialScale);
             SampledSpectrum L(0.f);
-            if (cr) {
-                if constexpr (requires { integrator.Li(cr->ray, cs.pFilm, lambda, sampler, counts.rays); })
-                    L = cr->weight * integrator.Li(cr->ray, cs.pFilm, lambda, sampler, counts.rays);
-                else
-                    L = cr->weight * integrator.Li(cr->ray, lambda, sampler, counts.rays);
-            }
+            std::optional<UnguidedMoment> unguided;
+            if (cr)
+                L = Radiance(scene, integrator, *cr, cs, lambda, sampler, counts.rays, moments, unguided);
             if (!IsValidRadiance(L)) {
                 ++counts.discarded;
                 continue;
@@ -134,8 +163,13 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
                 visible = scene.FirstVisibleSurface(cr->ray, lambda);
             }
             scene.film.AddSample(p, L, lambda, cs.filterWeight, visible ? &*visible : nullptr);
-            if (moments)
-                moments->Add(p, cs.filterWeight * MeanOutputRGB(scene.film, L, lambda));
+            if (moments) {
+                const Float value = cs.filterWeight * MeanOutputRGB(scene.film, L, lambda);
+                if (moments->EstimatesPath())
+                    moments->Add(p, value, unguided ? float(unguided->SecondMoment()) : Sqr(value));
+                else
+                    moments->Add(p, value);
+            }
         }
     }
 }

@@ -90,26 +90,28 @@ double SampleMoments::RelativeVariance(size_t i, double pixelValue) const {
     return std::max(0.0, variance) / (Sqr(pixelValue) + 0.01);
 }
 
-SampleMoments::Comparison SampleMoments::Compare(const SampleMoments &a, double costA, const SampleMoments &b,
-                                                double costB) {
-    if (a.pixels != b.pixels)
-        throw std::invalid_argument("SampleMoments::Compare: the two cover different pixels");
-    std::vector<float> count(a.count.size()), sum(a.count.size());
-    for (size_t i = 0; i < count.size(); ++i) {
-        count[i] = a.count[i] + b.count[i];
-        sum[i] = a.sum[i] + b.sum[i];
-    }
-    const std::vector<float> values = NeighbourhoodMeans(a.Width(), a.Height(), std::move(count), std::move(sum));
+double SampleMoments::PathRelativeVariance(size_t i, double pixelValue) const {
+    const double n = count[i], mean = sum[i] / n;
+    // E[Y^2] less an unbiased estimate of E[Y]^2: the mean's square less its variance.
+    const double variance = (sumOfSquares[i] - double(sum[i]) * sum[i] / n) / (n - 1);
+    const double pathVariance = sumOfPathSecondMoments[i] / n - (mean * mean - variance / n);
+    return pathVariance / (Sqr(pixelValue) + 0.01);
+}
+
+template <typename VarianceA, typename VarianceB>
+SampleMoments::Comparison SampleMoments::CompareBy(const SampleMoments &a, double costA, double costB,
+                                                   const std::vector<float> &values, VarianceA varianceA,
+                                                   VarianceB varianceB) {
     Comparison comparison;
     std::vector<float> difference(values.size()), counted(values.size());
     double pixelsCounted = 0;
     for (size_t i = 0; i < values.size(); ++i) {
-        if (a.count[i] < 2 || b.count[i] < 2)
+        const std::optional<double> va = varianceA(i, values[i]), vb = varianceB(i, values[i]);
+        if (!va || !vb)
             continue;
-        const double va = a.RelativeVariance(i, values[i]), vb = b.RelativeVariance(i, values[i]);
-        comparison.varianceA += va;
-        comparison.varianceB += vb;
-        difference[i] = float(costA * va - costB * vb);
+        comparison.varianceA += *va;
+        comparison.varianceB += *vb;
+        difference[i] = float(costA * *va - costB * *vb);
         counted[i] = 1;
         ++pixelsCounted;
     }
@@ -119,6 +121,41 @@ SampleMoments::Comparison SampleMoments::Compare(const SampleMoments &a, double 
     comparison.varianceB /= pixelsCounted;
     comparison.z = BlockZ(difference, counted, a.Width(), a.Height());
     return comparison;
+}
+
+SampleMoments::Comparison SampleMoments::Compare(const SampleMoments &a, double costA, const SampleMoments &b,
+                                                double costB) {
+    if (a.pixels != b.pixels)
+        throw std::invalid_argument("SampleMoments::Compare: the two cover different pixels");
+    std::vector<float> count(a.count.size()), sum(a.count.size());
+    for (size_t i = 0; i < count.size(); ++i) {
+        count[i] = a.count[i] + b.count[i];
+        sum[i] = a.sum[i] + b.sum[i];
+    }
+    auto variance = [](const SampleMoments &m) {
+        return [&m](size_t i, double value) -> std::optional<double> {
+            if (m.count[i] < 2)
+                return std::nullopt;
+            return m.RelativeVariance(i, value);
+        };
+    };
+    return CompareBy(a, costA, costB, NeighbourhoodMeans(a.Width(), a.Height(), std::move(count), std::move(sum)),
+                     variance(a), variance(b));
+}
+
+SampleMoments::Comparison SampleMoments::CompareWithPath(const SampleMoments &guided, double costGuided,
+                                                        double costPath) {
+    if (!guided.EstimatesPath())
+        throw std::invalid_argument("SampleMoments::CompareWithPath: no estimates of the path tracer's moments");
+    auto counted = [&guided](size_t i) { return guided.count[i] >= 2; };
+    return CompareBy(
+        guided, costGuided, costPath, NeighbourhoodMeans(guided.Width(), guided.Height(), guided.count, guided.sum),
+        [&](size_t i, double value) -> std::optional<double> {
+            return counted(i) ? std::optional(guided.RelativeVariance(i, value)) : std::nullopt;
+        },
+        [&](size_t i, double value) -> std::optional<double> {
+            return counted(i) ? std::optional(guided.PathRelativeVariance(i, value)) : std::nullopt;
+        });
 }
 
 std::array<std::optional<double>, 2> SampleMoments::RelativeVarianceByBlockParity() const {
@@ -149,10 +186,14 @@ double SampleMoments::MeanCount() const {
 void SampleMoments::Add(const SampleMoments &other) {
     if (other.pixels != pixels)
         throw std::invalid_argument("SampleMoments::Add: the two cover different pixels");
+    if (!other.EstimatesPath())
+        sumOfPathSecondMoments.clear();  // the samples added have no estimates
     for (size_t i = 0; i < count.size(); ++i) {
         count[i] += other.count[i];
         sum[i] += other.sum[i];
         sumOfSquares[i] += other.sumOfSquares[i];
+        if (EstimatesPath())
+            sumOfPathSecondMoments[i] += other.sumOfPathSecondMoments[i];
     }
 }
 

@@ -16,16 +16,23 @@ namespace pbrt {
 
 class SampleMoments {
   public:
-    explicit SampleMoments(const Bounds2i &pixels)
-        : pixels(pixels), count(size_t(pixels.Area())), sum(count.size()), sumOfSquares(count.size()) {}
+    // With unguided, also the sums of each sample's estimate of the path tracer's second moment
+    // (unguidedmoment.h), for CompareWithPath.
+    explicit SampleMoments(const Bounds2i &pixels, bool unguided = false)
+        : pixels(pixels), count(size_t(pixels.Area())), sum(count.size()), sumOfSquares(count.size()),
+          sumOfPathSecondMoments(unguided ? count.size() : 0) {}
 
     void Add(Point2i p, float y) {
-        const size_t i = size_t(p.y - pixels.pMin.y) * size_t(pixels.pMax.x - pixels.pMin.x) +
-                         size_t(p.x - pixels.pMin.x);
+        const size_t i = Index(p);
         ++count[i];
         sum[i] += y;
         sumOfSquares[i] += y * y;
     }
+    void Add(Point2i p, float y, float pathSecondMoment) {
+        Add(p, y);
+        sumOfPathSecondMoments[Index(p)] += pathSecondMoment;
+    }
+    bool EstimatesPath() const { return !sumOfPathSecondMoments.empty(); }
 
     // How estimator a compares with estimator b of the same image, given the cost of a sample of
     // each: the variance of one sample of each, relative to the square of the pixel's value
@@ -45,6 +52,10 @@ class SampleMoments {
     // RelativeVarianceByBlockParity splits the pixels by.
     static int BlockParity(int x, int y) { return (x / kBlock + y / kBlock) % 2; }
     static Comparison Compare(const SampleMoments &a, double costA, const SampleMoments &b, double costB);
+    // As Compare, a: the guided samples of these moments, b: the path tracer, its variance from
+    // the guided samples' estimates of its second moment (EstimatesPath) less the square of the
+    // pixel's mean (estimated without bias from the guided samples).
+    static Comparison CompareWithPath(const SampleMoments &guided, double costGuided, double costPath);
 
     // The variance of one sample relative to the pixel's value as Compare's (the value estimated
     // by these moments alone), averaged over the pixels that took two or more samples in the
@@ -53,18 +64,28 @@ class SampleMoments {
     std::array<std::optional<double>, 2> RelativeVarianceByBlockParity() const;
     // The samples a pixel took, on average.
     double MeanCount() const;
-    // Adds other's samples, of the same pixels, to these.
+    // Adds other's samples, of the same pixels, to these (and its estimates of the path tracer's
+    // moments where both have them; where other has none, these lose theirs).
     void Add(const SampleMoments &other);
     const Bounds2i &Pixels() const { return pixels; }
 
   private:
+    size_t Index(Point2i p) const {
+        return size_t(p.y - pixels.pMin.y) * size_t(Width()) + size_t(p.x - pixels.pMin.x);
+    }
     // Pixel i's variance of one sample over (its value squared plus 0.01); i took two or more.
     double RelativeVariance(size_t i, double pixelValue) const;
+    // The same for the path tracer, from the estimates of its second moment.
+    double PathRelativeVariance(size_t i, double pixelValue) const;
+    // a's and b's relative variance per pixel, their difference times cost, and its z (see Comparison).
+    template <typename VarianceA, typename VarianceB>
+    static Comparison CompareBy(const SampleMoments &a, double costA, double costB,
+                                const std::vector<float> &pixelValues, VarianceA varianceA, VarianceB varianceB);
     int Width() const { return pixels.pMax.x - pixels.pMin.x; }
     int Height() const { return pixels.pMax.y - pixels.pMin.y; }
 
     Bounds2i pixels;
-    std::vector<float> count, sum, sumOfSquares;
+    std::vector<float> count, sum, sumOfSquares, sumOfPathSecondMoments;
 };
 
 }  // namespace pbrt

@@ -3,8 +3,11 @@
 // a single sample far brighter than its pixel's others counts with its whole square, not weighed
 // down by the mean it raised; how sure the comparison is follows the spread over blocks (certain
 // where every block agrees, undecided where half the image says one thing and half the other);
-// and two sets of moments of different pixels are refused. The sums are floats: expected values
-// hold to their rounding (1e-6 relative).
+// and two sets of moments of different pixels are refused. Compared with the path tracer as guided
+// samples estimate it (integrators/unguidedmoment.h), the path tracer's variance is the mean of
+// the estimates of its second moment less an unbiased estimate of the squared mean: the sample
+// variance where each estimate is its own sample's square (no guiding). The sums are floats:
+// expected values hold to their rounding (1e-6 relative).
 #include "pbrt_ext/integrators/samplemoments.h"
 
 #include <gtest/gtest.h>
@@ -86,6 +89,41 @@ TEST(SampleMoments, ABrightSampleCountsWithItsWholeSquare) {
     const double expected = variance / (mean * mean + 0.01) / 1024;
     EXPECT_NEAR(c.varianceB, expected, 1e-6 * expected);
     EXPECT_GT(c.varianceB, 10);
+}
+
+// Every pixel of kPixels takes the samples values, each with the estimate pathSecondMoment of
+// the path tracer's second moment.
+SampleMoments UniformGuided(std::initializer_list<double> values, double pathSecondMoment) {
+    SampleMoments moments(kPixels, true);
+    for (Point2i p : kPixels)
+        for (double v : values) moments.Add(p, v, pathSecondMoment);
+    return moments;
+}
+
+TEST(SampleMoments, ThePathTracersVarianceIsItsSecondMomentLessTheSquaredMean) {
+    // Mean 1, sample variance 1/3: the squared mean's unbiased estimate is 1 - (1/3) / 4.
+    const SampleMoments guided = UniformGuided({0.5, 1.5, 0.5, 1.5}, 4);
+    SampleMoments::Comparison c = SampleMoments::CompareWithPath(guided, 2, 1);
+    EXPECT_NEAR(c.varianceA, (1.0 / 3) / 1.01, 1e-6);
+    EXPECT_NEAR(c.varianceB, (4 - (1 - 1.0 / 12)) / 1.01, 1e-6);
+    EXPECT_LT(c.z, -1e6);  // every block agrees that path is the less efficient at these costs
+}
+
+TEST(SampleMoments, WithoutGuidingThePathTracersVarianceIsTheSamples) {
+    SampleMoments own(kPixels, true);
+    for (Point2i p : kPixels)
+        for (double v : {0.2, 0.9, 0.4, 1.7}) own.Add(p, v, v * v);
+    SampleMoments::Comparison c = SampleMoments::CompareWithPath(own, 1, 1);
+    EXPECT_NEAR(c.varianceB, c.varianceA, 1e-6 * c.varianceA);
+    EXPECT_GT(c.varianceA, 0.1);
+}
+
+TEST(SampleMoments, MomentsWithoutEstimatesOfThePathTracerAreRefused) {
+    EXPECT_THROW(SampleMoments::CompareWithPath(Uniform({1, 2}), 1, 1), std::invalid_argument);
+    // Samples without estimates, added to those with, leave none.
+    SampleMoments merged = UniformGuided({1, 2}, 3);
+    merged.Add(Uniform({1, 2}));
+    EXPECT_FALSE(merged.EstimatesPath());
 }
 
 TEST(SampleMoments, RefusesMomentsOfOtherPixels) {
