@@ -39,7 +39,27 @@ GuidedPathIntegrator::DirectLight GuidedPathIntegrator::SampleLd(const SurfaceIn
     if (guide.Recording() && !delta)
         guide.RecordAt(si.p, wi, Luminance(ls->L * weight, lambda) / pdfLight);
     Float pathWeight = delta ? 1 : PowerHeuristic(1, pdfLight, 1, pdfBSDF);
-    return DirectLight{weight * ls->L * f / pdfLight, pathWeight / weight};
+    return DirectLight{weight * ls->L * f / pdfLight, pathWeight * ls->L * f / pdfLight};
+}
+
+bool GuidedPathIntegrator::Survives(SampledSpectrum &beta, Float etaScale, int depth, const DTree &learned,
+                                    const VertexGuide &vertex, const PathGuide::Scatter &scatter,
+                                    Float pixelEstimate, Sampler &sampler, UnguidedMoment *unguided) const {
+    if (depth <= 1)
+        return true;
+    Float throughput = (beta * etaScale).MaxComponentValue(), survival = 1;
+    if (throughput < 1) {
+        // DTree::Radiance of the direction, from the density already known where guided.
+        Float pdfLearned = vertex.directions ? scatter.pdfGuide : GuidePDF(learned, scatter.wi);
+        Float radiance = PathGuide::LearnedRadiance(learned, pdfLearned);
+        survival = PathGuide::SurvivalProbability(throughput, radiance, pixelEstimate);
+        if (sampler.Get1D() >= survival)
+            return false;
+        beta /= survival;
+    }
+    if (unguided)
+        unguided->Survived(std::min<Float>(1, unguided->PathThroughput(throughput)), survival);
+    return true;
 }
 
 SampledSpectrum GuidedPathIntegrator::Li(RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler,
@@ -110,8 +130,8 @@ SampledSpectrum GuidedPathIntegrator::Li(RayDifferential ray, SampledWavelengths
         if (lightSampled) {
             const DirectLight d = SampleLd(si, bsdf, vertex, lambda, sampler, rays);
             add(beta * d.Ld);
-            if (unguided && d.Ld)
-                unguided->Add(beta * d.Ld * d.pathOverGuidedWeight);
+            if (unguided)
+                unguided->Add(beta * d.LdPath);
         }
         pstd::optional<PathGuide::Scatter> scatter = PathGuide::SampleBSDF(bsdf, vertex, -ray.d, sampler);
         if (!scatter)
@@ -131,24 +151,10 @@ SampledSpectrum GuidedPathIntegrator::Li(RayDifferential ray, SampledWavelengths
                                                  vertex.leaf, scatter->pdfOwn, scatter->pdfGuide, gain});
         prevCtx = LightSampleContext(si);
         ray = si.SpawnRay(ray, scatter->wi, scatter->sample.flags, scatter->sample.eta);
-        // Russian roulette by what the path is expected to bring (see SurvivalProbability).
         if (depth == 0)
             pixelEstimate = 2 * learned.MeanRadiance();  // over the hemisphere: twice the sphere's mean
-        // As in the path tracer, from the third vertex on, and only while the throughput is under 1.
-        if (depth <= 1)
-            continue;
-        Float throughput = (beta * etaScale).MaxComponentValue(), survival = 1;
-        if (throughput < 1) {
-            // DTree::Radiance of the direction, from the density already known where guided.
-            Float pdfLearned = vertex.directions ? scatter->pdfGuide : GuidePDF(learned, scatter->wi);
-            Float radiance = PathGuide::LearnedRadiance(learned, pdfLearned);
-            survival = PathGuide::SurvivalProbability(throughput, radiance, pixelEstimate);
-            if (sampler.Get1D() >= survival)
-                break;
-            beta /= survival;
-        }
-        if (unguided)
-            unguided->Survived(std::min<Float>(1, unguided->PathThroughput(throughput)), survival);
+        if (!Survives(beta, etaScale, depth, learned, vertex, *scatter, pixelEstimate, sampler, unguided))
+            break;
     }
     if (record)
         guide.Commit(vertices, lambda);

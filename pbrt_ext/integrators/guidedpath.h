@@ -34,15 +34,22 @@ class GuidedPathIntegrator {
   private:
     using VertexGuide = PathGuide::VertexGuide;
 
-    // Next-event estimation's radiance, weighted against the mixture's density, and the ratio of
-    // the path tracer's weight (against the BSDF's density) to that weight.
+    // Next-event estimation's radiance, weighted against the mixture's density (Ld) and against
+    // the BSDF's, as the path tracer weighs it (LdPath).
     struct DirectLight {
-        SampledSpectrum Ld;
-        Float pathOverGuidedWeight = 0;
+        SampledSpectrum Ld, LdPath;
     };
     // Next-event estimation at si; where training, its record.
     DirectLight SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const VertexGuide &guide,
                         const SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays) const;
+    // Russian roulette by what the path is expected to bring (PathGuide::SurvivalProbability), from
+    // the third vertex on and only while the throughput is under 1, as in the path tracer: whether
+    // the path survives, its throughput beta then divided by the probability that it did. learned:
+    // the leaf's distribution at the vertex, scatter: the direction it sampled; unguided: told of
+    // the roulette the path tracer would have rolled.
+    bool Survives(SampledSpectrum &beta, Float etaScale, int depth, const DTree &learned,
+                  const VertexGuide &vertex, const PathGuide::Scatter &scatter, Float pixelEstimate,
+                  Sampler &sampler, UnguidedMoment *unguided) const;
 
     const Scene &scene;
     IntegratorOptions options;

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <optional>
 
 namespace pbrt {
@@ -32,9 +33,8 @@ SDTreeOptions TreeOptions(const GuidingOptions &guiding) {
 constexpr int kTrialAfterIterations = 2;
 // How sure the trial must be that guiding is the less efficient before it switches guiding off:
 // the difference of the two estimators' variance times cost, in standard errors
-// (SampleMoments::Compare). Where path tracing struggles its variance comes from rare bright
-// paths; a trial that saw few of them underestimates it, but a few of them also spread its
-// estimate, so that an uncertain trial keeps guiding.
+// (SampleMoments::Compare). Switching off where guiding would have paid costs its whole gain,
+// keeping it where it does not costs a fraction, so an uncertain trial keeps guiding.
 constexpr double kSwitchOffZ = 2;
 
 // What the trial measured: each estimator's cost per sample (in path rays, a guided ray counted
@@ -101,13 +101,21 @@ double CostPerSample(const RenderStatistics &stats, double rayCost) {
     return rayCost * double(stats.closestRays + stats.shadowRays) / double(std::max<int64_t>(1, stats.cameraSamples));
 }
 
+// Whether the trial can take the path tracer's variance from the guided samples
+// (unguidedmoment.h): for guidedpath, whose path tracer weighs by MIS, on a film that does not
+// clamp (a clamped sample's value is not linear in its radiance).
+bool EstimatesPath(const Scene &scene) {
+    return !RendersVolumes(scene) && scene.integratorOptions.strategy == PathStrategy::MIS &&
+           std::isinf(scene.film.MaxComponentValue());
+}
+
 // Renders samples with the tree frozen, their first half guided and the rest not, and compares the
 // two (guiding.h); none once cancelled (then without the second half).
 std::optional<Trial> RenderTrial(Scene &scene, SDTree &tree, SampleRange samples, double rayCost,
                                  const RenderOptions &options, RenderStatistics &render,
                                  InverseVarianceCombination &combination) {
     const Bounds2i pixels = scene.film.PixelBounds();
-    SampleMoments guided(pixels, !RendersVolumes(scene)), unguided(pixels);
+    SampleMoments guided(pixels, EstimatesPath(scene)), unguided(pixels);
     const int middle = samples.first + samples.Count() / 2;
     const RenderStatistics a = RenderTiles(scene, GuidedIntegrator(scene, tree, false),
                                            SampleRange{samples.first, middle}, options, "Trial", &guided);
@@ -126,9 +134,14 @@ std::optional<Trial> RenderTrial(Scene &scene, SDTree &tree, SampleRange samples
     const SampleMoments::Comparison direct =
         SampleMoments::Compare(guided, trial.guidedCostPerSample, unguided, trial.unguidedCostPerSample);
     trial.unguidedOwnVariance = direct.varianceB;
-    trial.comparison = guided.EstimatesPath() ? SampleMoments::CompareWithPath(guided, trial.guidedCostPerSample,
-                                                                               trial.unguidedCostPerSample)
-                                              : direct;
+    trial.comparison = direct;
+    if (guided.EstimatesPath()) {
+        const SampleMoments::Comparison estimated =
+            SampleMoments::CompareWithPath(guided, trial.guidedCostPerSample, trial.unguidedCostPerSample);
+        // Not where a path the path tracer takes too seldom for a double made the estimate infinite.
+        if (std::isfinite(estimated.varianceB))
+            trial.comparison = estimated;
+    }
     trial.samples = samples.Count();
     return trial;
 }

@@ -13,12 +13,13 @@
 // (samplemoments.h) times cost, in rays, a guided ray weighing what the training and rendering
 // still to come cost per ray (fixed measured factors: counted, not timed, so that a seed gives
 // one image). guidedpath takes the path tracer's variance from the guided samples, each
-// estimating the path tracer's second moment by importance weights (unguidedmoment.h): where
-// rare bright paths carry the light, the path tracer's own few samples per pixel seldom find them
-// and underestimate its variance, while guided paths find them more often. guidedvolpath compares with the unguided samples' own
+// estimating the path tracer's second moment by importance weights (unguidedmoment.h): where rare
+// bright paths carry the light, the path tracer's own few samples per pixel seldom find them and
+// underestimate its variance, while guided paths find them more often. guidedvolpath, a path
+// tracer without MIS (--strategy) and a film that clamps compare with the unguided samples' own
 // variance. Where guiding is the less efficient by more than two standard errors, the rest of the
-// budget renders without it; an uncertain trial keeps it. The tree is young: the trial cannot
-// see what training still to come would gain (docs/comparison.md, "Switching itself off").
+// budget renders without it; an uncertain trial keeps it. The tree is young: the trial cannot see
+// what training still to come would gain (docs/comparison.md, "Switching itself off").
 // "bool switchoff" false leaves guiding on. There is no trial under 14 samples per pixel, with
 // --guiding-load, or where a time limit ends training sooner; the training cost to
 // come is predicted by the sample budget, not the time limit.

@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 namespace pbrt {
@@ -109,22 +110,17 @@ SampledSpectrum ValuePerRadiance(const RGBFilm &film, const SampledSpectrum &cam
     return perRadiance;
 }
 
-// The camera ray's radiance by integrator; where it can, and moments take them, with its estimate
-// of the path tracer's second moment (unguidedmoment.h), added to moments by the caller.
+// The camera ray's radiance by integrator; with unguided (for guidedpath only), also its estimate
+// of the path tracer's second moment (unguidedmoment.h).
 template <typename Integrator>
-SampledSpectrum Radiance(const Scene &scene, const Integrator &integrator, const CameraRayDifferential &cr,
-                         const CameraSample &cs, SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays,
-                         const SampleMoments *moments, std::optional<UnguidedMoment> &unguided) {
-    if constexpr (requires { integrator.Li(cr.ray, cs.pFilm, lambda, sampler, rays); }) {
+SampledSpectrum Radiance(const Integrator &integrator, const CameraRayDifferential &cr, const CameraSample &cs,
+                         SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays, UnguidedMoment *unguided) {
+    if constexpr (requires { integrator.Li(cr.ray, cs.pFilm, lambda, sampler, rays); })
         return cr.weight * integrator.Li(cr.ray, cs.pFilm, lambda, sampler, rays);
-    } else {
-        if constexpr (requires { integrator.Li(cr.ray, lambda, sampler, rays, &*unguided); })
-            if (moments && moments->EstimatesPath()) {
-                unguided.emplace(ValuePerRadiance(scene.film, cr.weight, cs.filterWeight, lambda));
-                return cr.weight * integrator.Li(cr.ray, lambda, sampler, rays, &*unguided);
-            }
+    else if constexpr (requires { integrator.Li(cr.ray, lambda, sampler, rays, unguided); })
+        return cr.weight * integrator.Li(cr.ray, lambda, sampler, rays, unguided);
+    else
         return cr.weight * integrator.Li(cr.ray, lambda, sampler, rays);
-    }
 }
 
 // Samples [first, last) of every pixel of the tile, each pixel's in index order.
@@ -151,8 +147,10 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
             pstd::optional<CameraRayDifferential> cr = scene.GenerateCameraRay(cs, differentialScale);
             SampledSpectrum L(0.f);
             std::optional<UnguidedMoment> unguided;
+            if (moments && moments->EstimatesPath())
+                unguided.emplace();
             if (cr)
-                L = Radiance(scene, integrator, *cr, cs, lambda, sampler, counts.rays, moments, unguided);
+                L = Radiance(integrator, *cr, cs, lambda, sampler, counts.rays, unguided ? &*unguided : nullptr);
             if (!IsValidRadiance(L)) {
                 ++counts.discarded;
                 continue;
@@ -163,13 +161,17 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
                 visible = scene.FirstVisibleSurface(cr->ray, lambda);
             }
             scene.film.AddSample(p, L, lambda, cs.filterWeight, visible ? &*visible : nullptr);
-            if (moments) {
-                const Float value = cs.filterWeight * MeanOutputRGB(scene.film, L, lambda);
-                if (moments->EstimatesPath())
-                    moments->Add(p, value, unguided ? float(unguided->SecondMoment()) : Sqr(value));
-                else
-                    moments->Add(p, value);
+            if (!moments)
+                continue;
+            const Float value = cs.filterWeight * MeanOutputRGB(scene.film, L, lambda);
+            if (!unguided) {
+                moments->Add(p, value);
+                continue;
             }
+            // Weighed by the wavelengths as the path left them.
+            const SampledSpectrum cameraWeight = cr ? cr->weight : SampledSpectrum(0.f);
+            const SampledSpectrum toValue = ValuePerRadiance(scene.film, cameraWeight, cs.filterWeight, lambda);
+            moments->Add(p, value, float(unguided->SecondMoment(toValue)));
         }
     }
 }
@@ -183,6 +185,8 @@ Float SplatScale(const Bounds2i &pixels, int64_t cameraSamples) {
 
 RenderStatistics RenderTiles(Scene &scene, const TileIntegrator &integrator, SampleRange samples,
                              const RenderOptions &options, const char *title, SampleMoments *moments) {
+    if (moments && moments->EstimatesPath() && !std::holds_alternative<GuidedPathIntegrator>(integrator))
+        throw std::invalid_argument("RenderTiles: only guidedpath estimates the path tracer's moments");
     const Bounds2i pixels = scene.film.PixelBounds();
     const std::vector<Bounds2i> tiles = Tiles(pixels);
     // Every pixel of tile t has samples [samples.first, tileSamples[t]).

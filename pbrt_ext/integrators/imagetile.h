@@ -29,7 +29,9 @@ class SampleMoments;
 
 // Renders sample indices [samples.first, samples.last) of every pixel into the scene's film, in
 // waves (render.h's Render says how), with a progress bar titled title; where moments is given,
-// also adds each sample's value to it (the mean of its output RGB, times its filter weight).
+// also adds each sample's value to it (the mean of its output RGB, times its filter weight), and
+// where they estimate the path tracer's moments (for guidedpath's trial only), each sample's
+// estimate. Throws std::invalid_argument for such moments with another integrator.
 RenderStatistics RenderTiles(Scene &scene, const TileIntegrator &integrator, SampleRange samples,
                              const RenderOptions &options, const char *title,
                              SampleMoments *moments = nullptr);

@@ -98,20 +98,19 @@ double SampleMoments::PathRelativeVariance(size_t i, double pixelValue) const {
     return pathVariance / (Sqr(pixelValue) + 0.01);
 }
 
-template <typename VarianceA, typename VarianceB>
-SampleMoments::Comparison SampleMoments::CompareBy(const SampleMoments &a, double costA, double costB,
-                                                   const std::vector<float> &values, VarianceA varianceA,
-                                                   VarianceB varianceB) {
+SampleMoments::Comparison SampleMoments::CompareBy(const SampleMoments &a, RelativeVarianceOf varianceA, double costA,
+                                                  const SampleMoments &b, RelativeVarianceOf varianceB, double costB,
+                                                  const std::vector<float> &values) {
     Comparison comparison;
     std::vector<float> difference(values.size()), counted(values.size());
     double pixelsCounted = 0;
     for (size_t i = 0; i < values.size(); ++i) {
-        const std::optional<double> va = varianceA(i, values[i]), vb = varianceB(i, values[i]);
-        if (!va || !vb)
+        if (a.count[i] < 2 || b.count[i] < 2)
             continue;
-        comparison.varianceA += *va;
-        comparison.varianceB += *vb;
-        difference[i] = float(costA * *va - costB * *vb);
+        const double va = (a.*varianceA)(i, values[i]), vb = (b.*varianceB)(i, values[i]);
+        comparison.varianceA += va;
+        comparison.varianceB += vb;
+        difference[i] = float(costA * va - costB * vb);
         counted[i] = 1;
         ++pixelsCounted;
     }
@@ -132,30 +131,17 @@ SampleMoments::Comparison SampleMoments::Compare(const SampleMoments &a, double 
         count[i] = a.count[i] + b.count[i];
         sum[i] = a.sum[i] + b.sum[i];
     }
-    auto variance = [](const SampleMoments &m) {
-        return [&m](size_t i, double value) -> std::optional<double> {
-            if (m.count[i] < 2)
-                return std::nullopt;
-            return m.RelativeVariance(i, value);
-        };
-    };
-    return CompareBy(a, costA, costB, NeighbourhoodMeans(a.Width(), a.Height(), std::move(count), std::move(sum)),
-                     variance(a), variance(b));
+    return CompareBy(a, &SampleMoments::RelativeVariance, costA, b, &SampleMoments::RelativeVariance, costB,
+                     NeighbourhoodMeans(a.Width(), a.Height(), std::move(count), std::move(sum)));
 }
 
 SampleMoments::Comparison SampleMoments::CompareWithPath(const SampleMoments &guided, double costGuided,
                                                         double costPath) {
     if (!guided.EstimatesPath())
         throw std::invalid_argument("SampleMoments::CompareWithPath: no estimates of the path tracer's moments");
-    auto counted = [&guided](size_t i) { return guided.count[i] >= 2; };
-    return CompareBy(
-        guided, costGuided, costPath, NeighbourhoodMeans(guided.Width(), guided.Height(), guided.count, guided.sum),
-        [&](size_t i, double value) -> std::optional<double> {
-            return counted(i) ? std::optional(guided.RelativeVariance(i, value)) : std::nullopt;
-        },
-        [&](size_t i, double value) -> std::optional<double> {
-            return counted(i) ? std::optional(guided.PathRelativeVariance(i, value)) : std::nullopt;
-        });
+    return CompareBy(guided, &SampleMoments::RelativeVariance, costGuided, guided,
+                     &SampleMoments::PathRelativeVariance, costPath,
+                     NeighbourhoodMeans(guided.Width(), guided.Height(), guided.count, guided.sum));
 }
 
 std::array<std::optional<double>, 2> SampleMoments::RelativeVarianceByBlockParity() const {
@@ -186,14 +172,11 @@ double SampleMoments::MeanCount() const {
 void SampleMoments::Add(const SampleMoments &other) {
     if (other.pixels != pixels)
         throw std::invalid_argument("SampleMoments::Add: the two cover different pixels");
-    if (!other.EstimatesPath())
-        sumOfPathSecondMoments.clear();  // the samples added have no estimates
+    sumOfPathSecondMoments.clear();
     for (size_t i = 0; i < count.size(); ++i) {
         count[i] += other.count[i];
         sum[i] += other.sum[i];
         sumOfSquares[i] += other.sumOfSquares[i];
-        if (EstimatesPath())
-            sumOfPathSecondMoments[i] += other.sumOfPathSecondMoments[i];
     }
 }
 

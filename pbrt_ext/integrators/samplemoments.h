@@ -16,11 +16,11 @@ namespace pbrt {
 
 class SampleMoments {
   public:
-    // With unguided, also the sums of each sample's estimate of the path tracer's second moment
-    // (unguidedmoment.h), for CompareWithPath.
-    explicit SampleMoments(const Bounds2i &pixels, bool unguided = false)
+    // Where estimatesPath, also the sums of each sample's estimate of the path tracer's second
+    // moment (unguidedmoment.h), for CompareWithPath.
+    explicit SampleMoments(const Bounds2i &pixels, bool estimatesPath = false)
         : pixels(pixels), count(size_t(pixels.Area())), sum(count.size()), sumOfSquares(count.size()),
-          sumOfPathSecondMoments(unguided ? count.size() : 0) {}
+          sumOfPathSecondMoments(estimatesPath ? count.size() : 0) {}
 
     void Add(Point2i p, float y) {
         const size_t i = Index(p);
@@ -54,7 +54,8 @@ class SampleMoments {
     static Comparison Compare(const SampleMoments &a, double costA, const SampleMoments &b, double costB);
     // As Compare, a: the guided samples of these moments, b: the path tracer, its variance from
     // the guided samples' estimates of its second moment (EstimatesPath) less the square of the
-    // pixel's mean (estimated without bias from the guided samples).
+    // pixel's mean (estimated without bias from the guided samples). That difference is unbiased,
+    // not clamped: a pixel's can be negative, and so, with few pixels, can varianceB.
     static Comparison CompareWithPath(const SampleMoments &guided, double costGuided, double costPath);
 
     // The variance of one sample relative to the pixel's value as Compare's (the value estimated
@@ -64,8 +65,8 @@ class SampleMoments {
     std::array<std::optional<double>, 2> RelativeVarianceByBlockParity() const;
     // The samples a pixel took, on average.
     double MeanCount() const;
-    // Adds other's samples, of the same pixels, to these (and its estimates of the path tracer's
-    // moments where both have them; where other has none, these lose theirs).
+    // Adds other's samples, of the same pixels, to these; these no longer estimate the path
+    // tracer's moments (the trial compares one render's samples, never a sum of renders').
     void Add(const SampleMoments &other);
     const Bounds2i &Pixels() const { return pixels; }
 
@@ -77,10 +78,14 @@ class SampleMoments {
     double RelativeVariance(size_t i, double pixelValue) const;
     // The same for the path tracer, from the estimates of its second moment.
     double PathRelativeVariance(size_t i, double pixelValue) const;
-    // a's and b's relative variance per pixel, their difference times cost, and its z (see Comparison).
-    template <typename VarianceA, typename VarianceB>
-    static Comparison CompareBy(const SampleMoments &a, double costA, double costB,
-                                const std::vector<float> &pixelValues, VarianceA varianceA, VarianceB varianceB);
+    // The relative variance of one sample at pixel i whose value is given.
+    using RelativeVarianceOf = double (SampleMoments::*)(size_t i, double pixelValue) const;
+    // a's and b's relative variance (by varianceA of a's moments, varianceB of b's) over the pixels
+    // where both took two or more samples, each pixel's value given, and the z of their
+    // difference times cost (see Comparison).
+    static Comparison CompareBy(const SampleMoments &a, RelativeVarianceOf varianceA, double costA,
+                                const SampleMoments &b, RelativeVarianceOf varianceB, double costB,
+                                const std::vector<float> &pixelValues);
     int Width() const { return pixels.pMax.x - pixels.pMin.x; }
     int Height() const { return pixels.pMax.y - pixels.pMin.y; }
 

@@ -13,30 +13,36 @@
 //     E_path[(sum_k c_k)^2] = E_guided[sum_k r_k c_k (c_k + 2 sum_{j<k} c_j)].
 // The guided path carries b_k = r_k c_k: the contribution with the guided throughput (which is the
 // path tracer's times r_k) and the path tracer's MIS weights. The estimate is unbiased wherever
-// the guided path samples every direction the BSDF does (its BSDF fraction is never 0), up to the
-// stochastic densities of layered BSDFs, which it takes as exact.
+// the guided path samples every direction the BSDF does (its BSDF fraction is never 0), with two
+// approximations: the stochastic densities of layered BSDFs are taken as exact, and a direction
+// the guide sampled through a rough dielectric leaves the path's eta scale as it was
+// (PathGuide::SampleBSDF), so that the path tracer's roulette after it is emulated from a
+// throughput without the refraction's radiance scaling.
+//
+// The contributions are spectral, and what a unit of radiance at each wavelength adds to the
+// sample's value is known only once the path is done (a dispersive surface can terminate the
+// secondary wavelengths), so the moment is kept per pair of wavelengths and weighed at the end.
 #pragma once
 
 #include "pbrt_ext/pbrt.h"
 #include "pbrt_ext/util/spectrum.h"
 
+#include <array>
+
 namespace pbrt {
 
 class UnguidedMoment {
   public:
-    // toValue: per wavelength, what a unit of radiance adds to the sample's value (the value
-    // SampleMoments takes: linear in the radiance).
-    explicit UnguidedMoment(const SampledSpectrum &toValue) : toValue(toValue) {}
-
     // b_k: a contribution with the guided path's throughput and the path tracer's MIS weight.
     void Add(const SampledSpectrum &contribution) {
         if (!(ratio > 0))
             return;  // a path the path tracer cannot take
-        double b = 0;
-        for (int i = 0; i < NSpectrumSamples; ++i) b += double(toValue[i]) * contribution[i];
-        const double c = b / ratio;
-        secondMoment += b * (c + 2 * sum);
-        sum += c;
+        for (int i = 0; i < NSpectrumSamples; ++i) {
+            const double b = contribution[i];
+            for (int j = 0; j < NSpectrumSamples; ++j)
+                secondMoment[i][j] += b * (contribution[j] / ratio + 2 * sum[j]);
+        }
+        for (int j = 0; j < NSpectrumSamples; ++j) sum[j] += contribution[j] / ratio;
     }
     // The path scattered into a direction the path tracer samples with density pdfPath and the
     // guided path sampled with pdfGuided.
@@ -47,11 +53,21 @@ class UnguidedMoment {
     // The path tracer's throughput, from the guided path's.
     Float PathThroughput(Float guidedThroughput) const { return Float(guidedThroughput / ratio); }
 
-    double SecondMoment() const { return secondMoment; }
+    // The estimate of the second moment of the sample's value, where toValue is what a unit of
+    // radiance at each wavelength adds to it (the value being linear in the radiance).
+    double SecondMoment(const SampledSpectrum &toValue) const {
+        double total = 0;
+        for (int i = 0; i < NSpectrumSamples; ++i)
+            for (int j = 0; j < NSpectrumSamples; ++j) total += double(toValue[i]) * toValue[j] * secondMoment[i][j];
+        return total;
+    }
 
   private:
-    SampledSpectrum toValue;
-    double ratio = 1, sum = 0, secondMoment = 0;
+    double ratio = 1;
+    // Per wavelength, the sum of the path tracer's contributions so far; per pair of wavelengths,
+    // the estimate so far (what SecondMoment weighs).
+    std::array<double, NSpectrumSamples> sum{};
+    std::array<std::array<double, NSpectrumSamples>, NSpectrumSamples> secondMoment{};
 };
 
 }  // namespace pbrt

@@ -2,9 +2,9 @@
 // exact in expectation. On a toy estimator of two scattering vertices and a roulette between them,
 // whose outcomes are few enough to enumerate, the guided estimate's expectation over the guided
 // choices equals the path tracer's second moment over its own (to the rounding of the spectra's
-// floats, 1e-6 relative);
-// without guiding it is the square of the sample; and a path the path tracer cannot take adds
-// nothing.
+// floats, 1e-6 relative); without guiding it is the square of the sample; it weighs wavelengths
+// as the path left them (a dispersive surface keeps one); the path tracer's throughput is the
+// guided one over the ratio of densities; and a path the path tracer cannot take adds nothing.
 #include "pbrt_ext/integrators/unguidedmoment.h"
 
 #include <gtest/gtest.h>
@@ -30,19 +30,19 @@ constexpr std::array<std::array<double, 2>, 2> c2{{{2, 0}, {1, 10}}};
 
 // The guided estimate along the path that chose i, then (if it survived) j.
 double GuidedEstimate(int i, int j, bool survived) {
-    UnguidedMoment moment(kToValue);
+    UnguidedMoment moment;
     double ratio = 1;  // the path tracer's density over the guided one, so far
     moment.Add(SampledSpectrum(float(ratio * c0)));
     moment.Scattered(float(path1[i]), float(guided1[i]));
     ratio *= path1[i] / guided1[i];
     moment.Add(SampledSpectrum(float(ratio * c1[i])));
     if (!survived)
-        return moment.SecondMoment();
+        return moment.SecondMoment(kToValue);
     moment.Survived(float(survivePath[i]), float(surviveGuided[i]));
     moment.Scattered(float(path2[j]), float(guided2[j]));
     ratio *= survivePath[i] / surviveGuided[i] * path2[j] / guided2[j];
     moment.Add(SampledSpectrum(float(ratio * c2[i][j] / survivePath[i])));
-    return moment.SecondMoment();
+    return moment.SecondMoment(kToValue);
 }
 
 TEST(UnguidedMoment, ItsExpectationOverGuidedPathsIsThePathTracersSecondMoment) {
@@ -62,21 +62,40 @@ TEST(UnguidedMoment, ItsExpectationOverGuidedPathsIsThePathTracersSecondMoment) 
 }
 
 TEST(UnguidedMoment, WithoutGuidingItIsTheSamplesSquare) {
-    UnguidedMoment moment(kToValue);
+    UnguidedMoment moment;
     moment.Add(SampledSpectrum(0.5f));
     moment.Scattered(0.7f, 0.7f);
     moment.Add(SampledSpectrum(2.f));
     moment.Survived(0.4f, 0.4f);
     moment.Add(SampledSpectrum(1.f));
-    EXPECT_NEAR(moment.SecondMoment(), 3.5 * 3.5, 1e-6);
+    EXPECT_NEAR(moment.SecondMoment(kToValue), 3.5 * 3.5, 1e-6);
+}
+
+TEST(UnguidedMoment, WeighsTheWavelengthsAsThePathLeftThem) {
+    UnguidedMoment moment;
+    moment.Add(SampledSpectrum(1, 2, 3, 4));
+    moment.Scattered(0.5f, 1);
+    moment.Add(SampledSpectrum(2, 0, 0, 0));
+    // Weighed by the first wavelength alone, 4 times (as once the secondary ones end): the guided
+    // path's contributions are worth 4 and 8, the second on a path the path tracer takes half as
+    // often (worth 16 to it): 4 · 4 + 8 · (16 + 2 · 4).
+    const double got = moment.SecondMoment(SampledSpectrum(4, 0, 0, 0));
+    EXPECT_NEAR(got, 4 * 4 + 8 * (16 + 2 * 4), 1e-9);
+}
+
+TEST(UnguidedMoment, ThePathTracersThroughputIsTheGuidedOneOverTheRatio) {
+    UnguidedMoment moment;
+    moment.Scattered(0.2f, 0.8f);
+    moment.Survived(1, 0.5f);
+    EXPECT_NEAR(moment.PathThroughput(0.25f), 0.25f / (0.25f * 2), 1e-6f);
 }
 
 TEST(UnguidedMoment, APathThePathTracerCannotTakeAddsNothing) {
-    UnguidedMoment moment(kToValue);
+    UnguidedMoment moment;
     moment.Add(SampledSpectrum(1.f));
     moment.Scattered(0, 0.5f);  // a direction the BSDF does not sample
     moment.Add(SampledSpectrum(3.f));
-    EXPECT_EQ(moment.SecondMoment(), 1);
+    EXPECT_EQ(moment.SecondMoment(kToValue), 1);
 }
 
 }  // namespace
