@@ -13,7 +13,7 @@ GuidedPathIntegrator::GuidedPathIntegrator(const Scene &scene, const IntegratorO
 GuidedPathIntegrator::DirectLight GuidedPathIntegrator::SampleLd(const SurfaceInteraction &si, const BSDF &bsdf,
                                                                 const VertexGuide &vertex,
                                                                 const SampledWavelengths &lambda, Sampler &sampler,
-                                                                RayCounts &rays) const {
+                                                                RayCounts &rays, bool pathWeighted) const {
     LightSampleContext ctx(si);
     Float uLight = sampler.Get1D();
     Point2f u = sampler.Get2D();
@@ -38,8 +38,10 @@ GuidedPathIntegrator::DirectLight GuidedPathIntegrator::SampleLd(const SurfaceIn
     // A delta light's direction has no density for the tree to learn from.
     if (guide.Recording() && !delta)
         guide.RecordAt(si.p, wi, Luminance(ls->L * weight, lambda) / pdfLight);
-    Float pathWeight = delta ? 1 : PowerHeuristic(1, pdfLight, 1, pdfBSDF);
-    return DirectLight{weight * ls->L * f / pdfLight, pathWeight * ls->L * f / pdfLight};
+    DirectLight d{weight * ls->L * f / pdfLight, SampledSpectrum(0.f)};
+    if (pathWeighted)
+        d.LdPath = (delta ? 1 : PowerHeuristic(1, pdfLight, 1, pdfBSDF)) * ls->L * f / pdfLight;
+    return d;
 }
 
 bool GuidedPathIntegrator::Survives(SampledSpectrum &beta, Float etaScale, int depth, const DTree &learned,
@@ -128,7 +130,7 @@ SampledSpectrum GuidedPathIntegrator::Li(RayDifferential ray, SampledWavelengths
         const VertexGuide vertex = PathGuide::AtSurface(si, bsdf, leaf);
         lightSampled = IsNonSpecular(bsdf.Flags()) && !scene.lights.empty();
         if (lightSampled) {
-            const DirectLight d = SampleLd(si, bsdf, vertex, lambda, sampler, rays);
+            const DirectLight d = SampleLd(si, bsdf, vertex, lambda, sampler, rays, unguided != nullptr);
             add(beta * d.Ld);
             if (unguided)
                 unguided->Add(beta * d.LdPath);

@@ -34,14 +34,15 @@ class GuidedPathIntegrator {
   private:
     using VertexGuide = PathGuide::VertexGuide;
 
-    // Next-event estimation's radiance, weighted against the mixture's density (Ld) and against
-    // the BSDF's, as the path tracer weighs it (LdPath).
+    // Next-event estimation's radiance, weighted against the mixture's density (Ld) and, where
+    // asked for (pathWeighted), against the BSDF's, as the path tracer weighs it (LdPath).
     struct DirectLight {
         SampledSpectrum Ld, LdPath;
     };
     // Next-event estimation at si; where training, its record.
     DirectLight SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const VertexGuide &guide,
-                        const SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays) const;
+                        const SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays,
+                        bool pathWeighted) const;
     // Russian roulette by what the path is expected to bring (PathGuide::SurvivalProbability), from
     // the third vertex on and only while the throughput is under 1, as in the path tracer: whether
     // the path survives, its throughput beta then divided by the probability that it did. learned:

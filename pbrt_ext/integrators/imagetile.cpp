@@ -132,6 +132,7 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
     _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
     _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
     Sampler sampler = scene.sampler;  // per tile: samplers carry per-pixel state
+    const bool estimatesPath = moments && moments->EstimatesPath();
     for (Point2i p : tile) {
         PixelStatisticsScope pixelStatistics(stats, p, counts.rays);
         for (int i = first; i < last; ++i) {
@@ -147,7 +148,7 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
             pstd::optional<CameraRayDifferential> cr = scene.GenerateCameraRay(cs, differentialScale);
             SampledSpectrum L(0.f);
             std::optional<UnguidedMoment> unguided;
-            if (moments && moments->EstimatesPath())
+            if (estimatesPath)
                 unguided.emplace();
             if (cr)
                 L = Radiance(integrator, *cr, cs, lambda, sampler, counts.rays, unguided ? &*unguided : nullptr);

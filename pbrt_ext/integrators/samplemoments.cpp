@@ -83,18 +83,19 @@ double SampleMoments::Comparison::Efficiency(double costA, double costB) const {
     return b > 0 ? std::numeric_limits<double>::infinity() : 1;
 }
 
-double SampleMoments::RelativeVariance(size_t i, double pixelValue) const {
+double SampleMoments::SampleVariance(size_t i) const {
     const double n = count[i];
-    // The unbiased sample variance.
-    const double variance = (sumOfSquares[i] - double(sum[i]) * sum[i] / n) / (n - 1);
-    return std::max(0.0, variance) / (Sqr(pixelValue) + 0.01);
+    return (sumOfSquares[i] - double(sum[i]) * sum[i] / n) / (n - 1);
+}
+
+double SampleMoments::RelativeVariance(size_t i, double pixelValue) const {
+    return std::max(0.0, SampleVariance(i)) / (Sqr(pixelValue) + 0.01);
 }
 
 double SampleMoments::PathRelativeVariance(size_t i, double pixelValue) const {
     const double n = count[i], mean = sum[i] / n;
     // E[Y^2] less an unbiased estimate of E[Y]^2: the mean's square less its variance.
-    const double variance = (sumOfSquares[i] - double(sum[i]) * sum[i] / n) / (n - 1);
-    const double pathVariance = sumOfPathSecondMoments[i] / n - (mean * mean - variance / n);
+    const double pathVariance = sumOfPathSecondMoments[i] / n - (mean * mean - SampleVariance(i) / n);
     return pathVariance / (Sqr(pixelValue) + 0.01);
 }
 

@@ -74,6 +74,8 @@ class SampleMoments {
     size_t Index(Point2i p) const {
         return size_t(p.y - pixels.pMin.y) * size_t(Width()) + size_t(p.x - pixels.pMin.x);
     }
+    // Pixel i's unbiased sample variance; i took two or more.
+    double SampleVariance(size_t i) const;
     // Pixel i's variance of one sample over (its value squared plus 0.01); i took two or more.
     double RelativeVariance(size_t i, double pixelValue) const;
     // The same for the path tracer, from the estimates of its second moment.
