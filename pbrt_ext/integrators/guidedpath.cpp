@@ -10,10 +10,9 @@ GuidedPathIntegrator::GuidedPathIntegrator(const Scene &scene, const IntegratorO
                                            SDTree &tree, bool record)
     : scene(scene), options(options), guide(tree, record) {}
 
-GuidedPathIntegrator::DirectLight GuidedPathIntegrator::SampleLd(const SurfaceInteraction &si, const BSDF &bsdf,
-                                                                const VertexGuide &vertex,
-                                                                const SampledWavelengths &lambda, Sampler &sampler,
-                                                                RayCounts &rays, bool pathWeighted) const {
+DirectLight GuidedPathIntegrator::SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const VertexGuide &vertex,
+                                           const SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays,
+                                           bool pathWeighted) const {
     LightSampleContext ctx(si);
     Float uLight = sampler.Get1D();
     Point2f u = sampler.Get2D();

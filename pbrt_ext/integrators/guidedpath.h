@@ -34,12 +34,7 @@ class GuidedPathIntegrator {
   private:
     using VertexGuide = PathGuide::VertexGuide;
 
-    // Next-event estimation's radiance, weighted against the mixture's density (Ld) and, where
-    // asked for (pathWeighted), against the BSDF's, as the path tracer weighs it (LdPath).
-    struct DirectLight {
-        SampledSpectrum Ld, LdPath;
-    };
-    // Next-event estimation at si; where training, its record.
+    // Next-event estimation at si, LdPath where pathWeighted; where training, its record.
     DirectLight SampleLd(const SurfaceInteraction &si, const BSDF &bsdf, const VertexGuide &guide,
                         const SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays,
                         bool pathWeighted) const;

@@ -102,10 +102,10 @@ double CostPerSample(const RenderStatistics &stats, double rayCost) {
 }
 
 // Whether the trial can take the path tracer's variance from the guided samples
-// (unguidedmoment.h): for guidedpath, whose path tracer weighs by MIS, on a film that does not
-// clamp (a clamped sample's value is not linear in its radiance).
+// (unguidedmoment.h): where the path tracer weighs by MIS (volpath always does), on a film that
+// does not clamp (a clamped sample's value is not linear in its radiance).
 bool EstimatesPath(const Scene &scene) {
-    return !RendersVolumes(scene) && scene.integratorOptions.strategy == PathStrategy::MIS &&
+    return (RendersVolumes(scene) || scene.integratorOptions.strategy == PathStrategy::MIS) &&
            std::isinf(scene.film.MaxComponentValue());
 }
 

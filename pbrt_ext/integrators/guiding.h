@@ -12,12 +12,11 @@
 // or volpath where guidedvolpath renders media). It compares the two by relative variance
 // (samplemoments.h) times cost, in rays, a guided ray weighing what the training and rendering
 // still to come cost per ray (fixed measured factors: counted, not timed, so that a seed gives
-// one image). guidedpath takes the path tracer's variance from the guided samples, each
-// estimating the path tracer's second moment by importance weights (unguidedmoment.h): where rare
-// bright paths carry the light, the path tracer's own few samples per pixel seldom find them and
-// underestimate its variance, while guided paths find them more often. guidedvolpath, a path
-// tracer without MIS (--strategy) and a film that clamps compare with the unguided samples' own
-// variance. Where guiding is the less efficient by more than two standard errors, the rest of the
+// one image). The trial takes the path tracer's (or volpath's) variance from the guided samples,
+// each estimating its second moment by importance weights (unguidedmoment.h): where rare bright
+// paths carry the light, the path tracer's own few samples per pixel seldom find them and
+// underestimate its variance, while guided paths find them more often. A path tracer without MIS
+// (--strategy) and a film that clamps compare with the unguided samples' own variance. Where guiding is the less efficient by more than two standard errors, the rest of the
 // budget renders without it; an uncertain trial keeps it. The tree is young: the trial cannot see
 // what training still to come would gain (docs/comparison.md, "Switching itself off").
 // "bool switchoff" false leaves guiding on. There is no trial under 14 samples per pixel, with

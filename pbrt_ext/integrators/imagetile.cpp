@@ -110,8 +110,8 @@ SampledSpectrum ValuePerRadiance(const RGBFilm &film, const SampledSpectrum &cam
     return perRadiance;
 }
 
-// The camera ray's radiance by integrator; with unguided (for guidedpath only), also its estimate
-// of the path tracer's second moment (unguidedmoment.h).
+// The camera ray's radiance by integrator; with unguided (for the guided integrators only), also
+// its estimate of the path tracer's second moment (unguidedmoment.h).
 template <typename Integrator>
 SampledSpectrum Radiance(const Integrator &integrator, const CameraRayDifferential &cr, const CameraSample &cs,
                          SampledWavelengths &lambda, Sampler &sampler, RayCounts &rays, UnguidedMoment *unguided) {
@@ -177,6 +177,13 @@ void RenderTile(Scene &scene, const Integrator &integrator, const Bounds2i &tile
     }
 }
 
+// Whether integrator is guidedpath or guidedvolpath: those estimate the path tracer's moments.
+bool IsGuided(const TileIntegrator &integrator) {
+    if (const auto *volpath = std::get_if<VolPathIntegrator>(&integrator))
+        return volpath->Guided();
+    return std::holds_alternative<GuidedPathIntegrator>(integrator);
+}
+
 // Splats came from one light path per camera sample, spread over the pixels.
 Float SplatScale(const Bounds2i &pixels, int64_t cameraSamples) {
     return Float(double(pixels.Area()) / double(cameraSamples));
@@ -186,8 +193,8 @@ Float SplatScale(const Bounds2i &pixels, int64_t cameraSamples) {
 
 RenderStatistics RenderTiles(Scene &scene, const TileIntegrator &integrator, SampleRange samples,
                              const RenderOptions &options, const char *title, SampleMoments *moments) {
-    if (moments && moments->EstimatesPath() && !std::holds_alternative<GuidedPathIntegrator>(integrator))
-        throw std::invalid_argument("RenderTiles: only guidedpath estimates the path tracer's moments");
+    if (moments && moments->EstimatesPath() && !IsGuided(integrator))
+        throw std::invalid_argument("RenderTiles: only guided integrators estimate the path tracer's moments");
     const Bounds2i pixels = scene.film.PixelBounds();
     const std::vector<Bounds2i> tiles = Tiles(pixels);
     // Every pixel of tile t has samples [samples.first, tileSamples[t]).

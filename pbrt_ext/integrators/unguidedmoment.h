@@ -42,7 +42,10 @@ class UnguidedMoment {
             for (int j = 0; j < NSpectrumSamples; ++j)
                 secondMoment[i][j] += b * (contribution[j] / ratio + 2 * sum[j]);
         }
-        for (int j = 0; j < NSpectrumSamples; ++j) sum[j] += contribution[j] / ratio;
+        for (int j = 0; j < NSpectrumSamples; ++j) {
+            sum[j] += contribution[j] / ratio;
+            weightedSum[j] += contribution[j];
+        }
     }
     // The path scattered into a direction the path tracer samples with density pdfPath and the
     // guided path sampled with pdfGuided.
@@ -62,12 +65,28 @@ class UnguidedMoment {
         return total;
     }
 
+    // The path tracer's estimate weighted by its importance ratio, sum_k b_k: like the guided
+    // path's own, an unbiased estimate of the sample's mean value (what tests check the weights
+    // and ratios by, pairing the two).
+    double WeightedEstimate(const SampledSpectrum &toValue) const {
+        double total = 0;
+        for (int i = 0; i < NSpectrumSamples; ++i) total += double(toValue[i]) * weightedSum[i];
+        return total;
+    }
+
   private:
     double ratio = 1;
-    // Per wavelength, the sum of the path tracer's contributions so far; per pair of wavelengths,
-    // the estimate so far (what SecondMoment weighs).
-    std::array<double, NSpectrumSamples> sum{};
+    // Per wavelength, the sum of the path tracer's contributions so far, and of the b_k; per pair
+    // of wavelengths, the estimate so far (what SecondMoment weighs).
+    std::array<double, NSpectrumSamples> sum{}, weightedSum{};
     std::array<std::array<double, NSpectrumSamples>, NSpectrumSamples> secondMoment{};
+};
+
+// Next-event estimation's radiance at a guided vertex, weighted against the mixture's density
+// (Ld) and, where asked for, against the BSDF's or phase function's, as the path tracer weighs it
+// (LdPath, for UnguidedMoment::Add).
+struct DirectLight {
+    SampledSpectrum Ld, LdPath;
 };
 
 }  // namespace pbrt

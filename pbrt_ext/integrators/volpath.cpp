@@ -10,9 +10,10 @@
 namespace pbrt {
 
 SampledSpectrum VolPathIntegrator::Li(RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler,
-                                      RayCounts &rays) const {
+                                      RayCounts &rays, UnguidedMoment *unguided) const {
     PathState path;
     path.ray = ray;
+    path.unguided = unguided;
     if (guide && guide->Recording()) {
         thread_local PathGuide::PathRecord vertices;  // one per thread, its storage reused
         vertices.clear();
@@ -75,29 +76,32 @@ void VolPathIntegrator::Trace(PathState &path, SampledWavelengths &lambda, Sampl
                 if (!ScatterSubsurface(path, si, *bssrdf, lambda, sampler, rays))
                     return;
 
-        // Russian roulette on the throughput over its probability, without refraction's
-        // radiance scaling; with a guide, also by the radiance learned along the new direction.
-        if (!path.beta)
+        if (!path.beta || !Survives(path, leaf, sampler))
             return;
-        SampledSpectrum rrBeta = path.beta * path.etaScale / MISDenominator(path.r_u);
-        Float uRR = sampler.Get1D();
-        if (rrBeta.MaxComponentValue() < 1 && path.depth > 1) {
-            if (leaf) {
-                const DTree &learned = leaf->directions;
-                Float radiance = PathGuide::LearnedRadiance(learned, GuidePDF(learned, path.ray.d));
-                Float survival = PathGuide::SurvivalProbability(rrBeta.MaxComponentValue(), radiance,
-                                                                path.pixelEstimate);
-                if (uRR >= survival)
-                    return;
-                path.beta /= survival;
-            } else {
-                Float q = std::max<Float>(0, 1 - rrBeta.MaxComponentValue());
-                if (uRR < q)
-                    return;
-                path.beta /= 1 - q;
-            }
+    }
+}
+
+bool VolPathIntegrator::Survives(PathState &path, const std::optional<SDTree::Guide> &leaf, Sampler &sampler) const {
+    Float throughput = (path.beta * path.etaScale / MISDenominator(path.r_u)).MaxComponentValue();
+    Float uRR = sampler.Get1D(), survival = 1;
+    if (throughput < 1 && path.depth > 1) {
+        if (leaf) {
+            const DTree &learned = leaf->directions;
+            Float radiance = PathGuide::LearnedRadiance(learned, GuidePDF(learned, path.ray.d));
+            survival = PathGuide::SurvivalProbability(throughput, radiance, path.pixelEstimate);
+            if (uRR >= survival)
+                return false;
+            path.beta /= survival;
+        } else {
+            Float q = std::max<Float>(0, 1 - throughput);
+            if (uRR < q)
+                return false;
+            path.beta /= 1 - q;
         }
     }
+    if (path.unguided && path.depth > 1)
+        path.unguided->Survived(std::min<Float>(1, path.unguided->PathThroughput(throughput)), survival);
+    return true;
 }
 
 std::optional<SDTree::Guide> VolPathIntegrator::LeafAt(PathState &path, Point3f p, Float expectedOverMean) const {
@@ -128,6 +132,10 @@ bool VolPathIntegrator::ScatterAtSurface(PathState &path, const SurfaceInteracti
         const SampledSpectrum gain = scatter->weight * AbsDot(scatter->wi, ns);
         path.beta *= gain;
         path.r_l = path.r_u / scatter->pdf;
+        if (path.unguided) {
+            path.r_lPath = path.r_u / scatter->pdfOwn;
+            path.unguided->Scattered(scatter->pdfOwn, scatter->pdf);
+        }
         *sample = scatter->sample;
         if (path.record && !sample->IsSpecular())
             AddRecordedVertex(path, si.p, vertex, *scatter, gain);
@@ -156,6 +164,10 @@ bool VolPathIntegrator::ScatterInMedium(PathState &path, const MediumInteraction
             return false;
         path.beta *= scatter->weight;
         path.r_l = path.r_u / scatter->pdf;
+        if (path.unguided) {
+            path.r_lPath = path.r_u / scatter->pdfOwn;
+            path.unguided->Scattered(scatter->pdfOwn, scatter->pdf);
+        }
         wi = scatter->wi;
         if (path.record)
             AddRecordedVertex(path, mi.p, vertex, *scatter, scatter->weight);
@@ -176,18 +188,18 @@ void VolPathIntegrator::AddRecordedVertex(PathState &path, Point3f p, const Path
                                              vertex.leaf, scatter.pdfOwn, scatter.pdfGuide, gain});
 }
 
-SampledSpectrum VolPathIntegrator::SampleLdAtSurface(const SurfaceInteraction &si, const BSDF &bsdf,
-                                                     const PathGuide::VertexGuide &vertex,
-                                                     const SampledWavelengths &lambda,
-                                                     Sampler &sampler, const PathState &path,
-                                                     RayCounts &rays) const {
+DirectLight VolPathIntegrator::SampleLdAtSurface(const SurfaceInteraction &si, const BSDF &bsdf,
+                                                 const PathGuide::VertexGuide &vertex,
+                                                 const SampledWavelengths &lambda, Sampler &sampler,
+                                                 const PathState &path, RayCounts &rays) const {
     Vector3f ns(si.shading.n);
     auto scatter = [&](Vector3f wi) {
-        return std::pair(bsdf.f(si.wo, wi) * AbsDot(wi, ns), vertex.PDF(bsdf.PDF(si.wo, wi), wi));
+        Float pdfBSDF = bsdf.PDF(si.wo, wi);
+        return ScatterToward{bsdf.f(si.wo, wi) * AbsDot(wi, ns), vertex.PDF(pdfBSDF, wi), pdfBSDF};
     };
     auto spawnTo = [&](Point3f pLight) { return si.SpawnRayTo(pLight); };
     return SampleLd(LightSampleContext(si), scatter, spawnTo, lambda, sampler, path.beta, path.r_u,
-                    rays);
+                    path.unguided != nullptr, rays);
 }
 
 bool VolPathIntegrator::ScatterSubsurface(PathState &path, const SurfaceInteraction &si,
@@ -242,6 +254,7 @@ bool VolPathIntegrator::ScatterSubsurface(PathState &path, const SurfaceInteract
         return false;
     path.beta *= bs->f * AbsDot(bs->wi, Vector3f(pi.shading.n)) / bs->pdf;
     path.r_l = path.r_u / bs->pdf;
+    path.r_lPath = path.r_l;  // the exit is not guided
     path.specularBounce = false;
     path.ray = pi.SpawnRay(path.ray, bs->wi, bs->flags, bs->eta);
     return true;
@@ -300,11 +313,11 @@ VolPathIntegrator::MediumOutcome VolPathIntegrator::SampleMedium(PathState &path
                 if (!scene.lights.empty()) {
                     auto scatter = [&](Vector3f wi) {
                         Float ph = mi.phase.p(mi.wo, wi);
-                        return std::pair(SampledSpectrum(ph), vertex.PDF(ph, wi));
+                        return ScatterToward{SampledSpectrum(ph), vertex.PDF(ph, wi), ph};
                     };
                     auto spawnTo = [&](Point3f pLight) { return mi.SpawnRayTo(pLight); };
                     path.Add(SampleLd(LightSampleContext(p, Normal3f(), Normal3f()), scatter, spawnTo, lambda,
-                                      sampler, path.beta, path.r_u, rays));
+                                      sampler, path.beta, path.r_u, path.unguided != nullptr, rays));
                 }
                 scattered = ScatterInMedium(path, mi, vertex, sampler);
                 terminated = !scattered;
@@ -314,7 +327,7 @@ VolPathIntegrator::MediumOutcome VolPathIntegrator::SampleMedium(PathState &path
             Float pdf = T_maj[0] * sigma_n[0];
             path.beta = pdf == 0 ? SampledSpectrum(0.f) : path.beta * T_maj * sigma_n / pdf;
             path.r_u *= T_maj * sigma_n / pdf;
-            path.r_l *= T_maj * sigma_maj / pdf;
+            path.ScaleLightProbability(T_maj * sigma_maj / pdf);
             return bool(path.beta) && bool(path.r_u);
         });
     if (terminated || !path.beta || !path.r_u)
@@ -325,7 +338,7 @@ VolPathIntegrator::MediumOutcome VolPathIntegrator::SampleMedium(PathState &path
     SampledSpectrum tailRelativeToHero = T_majEnd / T_majEnd[0];
     path.beta *= tailRelativeToHero;
     path.r_u *= tailRelativeToHero;
-    path.r_l *= tailRelativeToHero;
+    path.ScaleLightProbability(tailRelativeToHero);
     return MediumOutcome::PassedThrough;
 }
 
@@ -339,15 +352,18 @@ void VolPathIntegrator::AddEmitted(PathState &path, SampledSpectrum Le, int ligh
     const Light &light = scene.lights[lightIndex];
     Float p_l = scene.lightSampler.PMF(path.prevCtx, lightIndex) *
                 light.PDF_Li(path.prevCtx, path.ray.d, true);
-    path.Add(path.beta * Le / MISDenominator(path.r_u + path.r_l * p_l));
+    const SampledSpectrum contribution = path.beta * Le / MISDenominator(path.r_u + path.r_l * p_l);
+    if (!path.unguided) {
+        path.Add(contribution);
+        return;
+    }
+    path.Add(contribution, path.beta * Le / MISDenominator(path.r_u + path.r_lPath * p_l));
 }
 
 template <typename Scatter, typename SpawnTo>
-SampledSpectrum VolPathIntegrator::SampleLd(const LightSampleContext &ctx, Scatter scatter,
-                                            SpawnTo spawnTo,
-                                            const SampledWavelengths &lambda, Sampler &sampler,
-                                            SampledSpectrum beta, SampledSpectrum r_p,
-                                            RayCounts &rays) const {
+DirectLight VolPathIntegrator::SampleLd(const LightSampleContext &ctx, Scatter scatter, SpawnTo spawnTo,
+                                        const SampledWavelengths &lambda, Sampler &sampler, SampledSpectrum beta,
+                                        SampledSpectrum r_p, bool pathWeighted, RayCounts &rays) const {
     Float u = sampler.Get1D();
     pstd::optional<SampledLight> sampled = scene.lightSampler.Sample(ctx, u);
     Point2f uLight = sampler.Get2D();
@@ -358,15 +374,16 @@ SampledSpectrum VolPathIntegrator::SampleLd(const LightSampleContext &ctx, Scatt
     if (!ls || !ls->L || !(ls->pdf > 0))
         return {};
     Float p_l = sampled->p * ls->pdf;
-    auto [f_hat, scatterPDF] = scatter(ls->wi);
-    if (!f_hat)
+    const ScatterToward s = scatter(ls->wi);
+    if (!s.f)
         return {};
     SampledSpectrum r_l(1.f), r_u(1.f);
     SampledSpectrum T_ray = Transmittance(spawnTo(ls->pLight), ls->pLight, lambda, &r_l, &r_u, rays);
     if (!T_ray)
         return {};
+    const SampledSpectrum r_uTransmitted = r_u;
     r_l *= r_p * p_l;
-    r_u *= r_p * scatterPDF;
+    r_u *= r_p * s.pdf;
     bool delta = light.Type() == LightType::DeltaPosition ||
                  light.Type() == LightType::DeltaDirection;
     // A delta light's direction has no density for the tree to learn from. The record is the
@@ -374,7 +391,11 @@ SampledSpectrum VolPathIntegrator::SampleLd(const LightSampleContext &ctx, Scatt
     if (guide && guide->Recording() && !delta)
         guide->RecordAt(ctx.p, ls->wi,
                         Luminance(T_ray * ls->L, lambda) * MISDenominator(r_p) / MISDenominator(r_l + r_u));
-    return beta * f_hat * T_ray * ls->L / MISDenominator(delta ? r_l : r_l + r_u);
+    const SampledSpectrum unweighted = beta * s.f * T_ray * ls->L;
+    DirectLight d{unweighted / MISDenominator(delta ? r_l : r_l + r_u), SampledSpectrum(0.f)};
+    if (pathWeighted)
+        d.LdPath = unweighted / MISDenominator(delta ? r_l : r_l + r_uTransmitted * (r_p * s.pdfOwn));
+    return d;
 }
 
 SampledSpectrum VolPathIntegrator::Transmittance(Ray ray, Point3f pLight,

@@ -15,11 +15,16 @@
 // rescaled probabilities carry, Russian roulette follows the radiance learned along the path
 // (PathGuide::SurvivalProbability), and paths record what arrived while training (a subsurface
 // exit is not guided, and only its next-event estimation records). Without one, it is pbrt-v4's
-// volpath, sample for sample.
+// volpath, sample for sample. Given an UnguidedMoment, a guided Li also estimates the second
+// moment of volpath's estimate (unguidedmoment.h), for guiding's trial: each contribution is also
+// weighted by the light-sampling probability volpath would carry (r_l over the BSDF's or phase
+// function's density, not the mixture's), and the importance ratio follows the scatters and
+// roulettes; medium sampling, spectral MIS and subsurface exits are the same in both.
 #pragma once
 
 #include "pbrt_ext/integrators/path.h"
 #include "pbrt_ext/integrators/pathguide.h"
+#include "pbrt_ext/integrators/unguidedmoment.h"
 #include "pbrt_ext/interaction.h"
 #include "pbrt_ext/materials/bsdf.h"
 #include "pbrt_ext/materials/bssrdf.h"
@@ -36,8 +41,10 @@ class VolPathIntegrator {
     VolPathIntegrator(const Scene &scene, IntegratorOptions options, std::optional<PathGuide> guide = {})
         : scene(scene), options(options), guide(guide) {}
 
+    // unguided: only with a guide.
     SampledSpectrum Li(RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler,
-                       RayCounts &rays) const;
+                       RayCounts &rays, UnguidedMoment *unguided = nullptr) const;
+    bool Guided() const { return guide.has_value(); }
 
   private:
     // What a path carries from vertex to vertex.
@@ -52,11 +59,26 @@ class VolPathIntegrator {
         // With a guide: the radiance its tree expects at the path's first vertex (negative until
         // then), for its Russian roulette.
         Float pixelEstimate = -1;
-        // Adds to the estimate, and to what arrived at the recorded vertices.
-        void Add(const SampledSpectrum &contribution) {
+        // With the trial's moment: what it sums, and the light-sampling probability r_l as volpath
+        // carries it.
+        UnguidedMoment *unguided = nullptr;
+        SampledSpectrum r_lPath{1.f};
+        // Adds to the estimate, and to what arrived at the recorded vertices; asPath: the same
+        // contribution weighted as volpath weighs it, for the moment.
+        void Add(const SampledSpectrum &contribution, const SampledSpectrum &asPath) {
             L += contribution;
             if (record)
                 PathGuide::Arrived(*record, contribution);
+            if (unguided)
+                unguided->Add(asPath);
+        }
+        void Add(const SampledSpectrum &contribution) { Add(contribution, contribution); }
+        void Add(const DirectLight &d) { Add(d.Ld, d.LdPath); }
+        // Multiplies both light-sampling probabilities along a stretch of medium.
+        void ScaleLightProbability(const SampledSpectrum &factor) {
+            r_l *= factor;
+            if (unguided)
+                r_lPath *= factor;
         }
     };
     enum class MediumOutcome { PassedThrough, Scattered, Terminated };
@@ -83,8 +105,19 @@ class VolPathIntegrator {
     // scattering (with next-event estimation and a new direction) or null scattering.
     MediumOutcome SampleMedium(PathState &path, Float tMax, SampledWavelengths &lambda,
                                Sampler &sampler, RayCounts &rays) const;
+    // Russian roulette on the throughput over its probability, without refraction's radiance
+    // scaling (from the second surface vertex on, while under 1); with a guide (leaf), also by
+    // the radiance learned along the new direction. Whether the path survives; its moment is
+    // told of the roulette volpath would have rolled.
+    bool Survives(PathState &path, const std::optional<SDTree::Guide> &leaf, Sampler &sampler) const;
+    // What a vertex's scattering gives a light's direction, for next-event estimation: f (times
+    // the cosine at a surface), the mixture's density and the vertex's own.
+    struct ScatterToward {
+        SampledSpectrum f;
+        Float pdf, pdfOwn;
+    };
     // Next-event estimation at a surface vertex with its BSDF.
-    SampledSpectrum SampleLdAtSurface(const SurfaceInteraction &si, const BSDF &bsdf,
+    DirectLight SampleLdAtSurface(const SurfaceInteraction &si, const BSDF &bsdf,
                                       const PathGuide::VertexGuide &vertex,
                                       const SampledWavelengths &lambda, Sampler &sampler,
                                       const PathState &path, RayCounts &rays) const;
@@ -98,13 +131,14 @@ class VolPathIntegrator {
     // Emission Le reached by the path, from light lightIndex, weighted against light sampling.
     void AddEmitted(PathState &path, SampledSpectrum Le, int lightIndex) const;
     // Next-event estimation at a surface or medium vertex: one light sample, attenuated by
-    // the media and interfaces on the way (ratio tracking), weighted by MIS against
-    // scatterPDF(wi). r_p is the path's rescaled probability r_u at the vertex. While training,
-    // the light's radiance, with its MIS weight over its density, is recorded at the vertex.
+    // the media and interfaces on the way (ratio tracking), weighted by MIS against the density
+    // scatter(wi) (a ScatterToward) reports, and where pathWeighted against its own density too
+    // (LdPath). r_p is the path's rescaled probability r_u at the vertex. While training, the
+    // light's radiance, with its MIS weight over its density, is recorded at the vertex.
     template <typename Scatter, typename SpawnTo>
-    SampledSpectrum SampleLd(const LightSampleContext &ctx, Scatter scatter, SpawnTo spawnTo,
-                             const SampledWavelengths &lambda, Sampler &sampler,
-                             SampledSpectrum beta, SampledSpectrum r_p, RayCounts &rays) const;
+    DirectLight SampleLd(const LightSampleContext &ctx, Scatter scatter, SpawnTo spawnTo,
+                         const SampledWavelengths &lambda, Sampler &sampler, SampledSpectrum beta,
+                         SampledSpectrum r_p, bool pathWeighted, RayCounts &rays) const;
     // Transmittance along ray to pLight through media and interfaces (0 if a surface blocks
     // it), updating the light-path probabilities r_l and r_u by ratio tracking (by its
     // expectation in homogeneous media).

@@ -9,9 +9,11 @@
 
 #include "tests/support/chi2.h"
 #include "tests/support/imagestats.h"
+#include "tests/support/samplemean.h"
 #include "tests/support/scenefolder.h"
 #include "tests/support/scenes.h"
 
+#include "pbrt_ext/cameras/cameras.h"
 #include "pbrt_ext/render.h"
 #include "pbrt_ext/scene.h"
 #include "pbrt_ext/scene/sceneloader.h"
@@ -30,8 +32,8 @@ using namespace testscenes;
 
 const std::filesystem::path kScenes = std::filesystem::path(PBRT_EXT_TEST_DATA_DIR) / "../../scenes";
 
-// scenes/media-cornell-fog.pbrt at 24 x 24 pixels, rendered by integrator.
-std::unique_ptr<Scene> FogBox(const std::string &integrator, int spp, int seed, RenderStatistics *stats = nullptr) {
+// scenes/media-cornell-fog.pbrt at 24 x 24 pixels, for integrator.
+std::unique_ptr<Scene> LoadFogBox(const std::string &integrator, int spp = 1, int seed = 0) {
     RenderOverrides o;
     o.integrator = integrator;
     o.spp = spp;
@@ -40,6 +42,12 @@ std::unique_ptr<Scene> FogBox(const std::string &integrator, int spp, int seed, 
     o.quiet = true;
     auto scene = LoadScene((kScenes / "media-cornell-fog.pbrt").string(), o);
     scene->integratorOptions.guiding.switchOff = false;  // guided throughout: no trial (guiding.h)
+    return scene;
+}
+
+// The fog box rendered by integrator.
+std::unique_ptr<Scene> FogBox(const std::string &integrator, int spp, int seed, RenderStatistics *stats = nullptr) {
+    auto scene = LoadFogBox(integrator, spp, seed);
     RenderStatistics s = Render(*scene, {0, true});
     if (stats)
         *stats = s;
@@ -150,6 +158,106 @@ TEST(GuidedVolPath, RefusesABSDFFractionOfZero) {
     EXPECT_THAT([&] { LoadScene(file.string(), quiet); },
                 testing::ThrowsMessage<ParseError>(testing::HasSubstr("zero.pbrt:2:28: error: guidedvolpath "
                                                                       "\"bsdffraction\" must be in (0, 1]")));
+}
+
+// Camera samples of the lower half of a scene's image (for the fog box: the light out of sight,
+// which every estimator sees alike), each sample's value what value(ray, lambda, sampler) returns.
+template <typename Value>
+std::vector<double> CameraSamples(const Scene &scene, int count, uint64_t seed, Value value) {
+    Sampler sampler = IndependentSampler(1, seed);
+    const Bounds2i pixels = scene.film.PixelBounds();
+    const Vector2i size = pixels.Diagonal();
+    std::vector<double> values;
+    for (int i = 0; i < count; ++i) {
+        const Point2i p = pixels.pMin + Vector2i(i % size.x, size.y / 2 + i / size.x % (size.y / 2));
+        sampler.StartPixelSample(p, i);
+        SampledWavelengths lambda = SampledWavelengths::SampleVisible(sampler.Get1D());
+        const CameraSample cs = GetCameraSample(sampler, p, scene.film.GetFilter());
+        pstd::optional<CameraRayDifferential> ray = scene.GenerateCameraRay(cs, 1);
+        values.push_back(ray ? value(ray->ray, lambda, sampler) : 0.0);
+    }
+    return values;
+}
+
+// guidedvolpath on the fog box, guiding nine directions in ten at surfaces and in the fog (so that
+// its paths are far from volpath's), with paths up to 10 vertices long, whose roulettes differ;
+// its tree trained by two iterations of 4000 paths.
+class MostlyGuidedFogBox {
+  public:
+    MostlyGuidedFogBox() : scene(LoadFogBox("guidedvolpath")), options(scene->integratorOptions), tree(Tree(*scene)) {
+        options.maxDepth = 10;
+        const VolPathIntegrator learner(*scene, options, PathGuide(tree, true));
+        RayCounts rays;
+        for (int iteration = 0; iteration < 2; ++iteration) {
+            CameraSamples(*scene, 4000, 3 + iteration,
+                          [&](RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler) {
+                              return double(learner.Li(ray, lambda, sampler, rays).Average());
+                          });
+            tree.Refine(iteration);
+        }
+    }
+    VolPathIntegrator Guided() { return VolPathIntegrator(*scene, options, PathGuide(tree, false)); }
+    VolPathIntegrator VolPath() const { return VolPathIntegrator(*scene, options); }
+
+    std::unique_ptr<Scene> scene;
+    IntegratorOptions options;
+    SDTree tree;
+
+  private:
+    static SDTree Tree(const Scene &scene) {
+        SDTreeOptions mostlyGuided;
+        mostlyGuided.bsdfFraction = 0.1f;
+        mostlyGuided.learnBSDFFraction = false;
+        return SDTree(scene.aggregate.WorldBound(), mostlyGuided);
+    }
+};
+
+// The sample's value from a unit of radiance at each wavelength, as CameraSamples values them.
+const SampledSpectrum kToValue(1.f / NSpectrumSamples);
+
+// The importance-weighted estimate (UnguidedMoment::WeightedEstimate) weighs each contribution by
+// volpath's MIS weights, not the guided path's: both are unbiased, so their difference, sample by
+// sample, has mean 0 (within 4 standard errors). Weighing emitters found by scattering with the
+// mixture's r_l, or next-event estimation with the mixture's density, moved it by 8.8 and -4.5.
+TEST(GuidedVolPath, ItsPathWeightedEstimateHasTheSamplesMean) {
+    MostlyGuidedFogBox box;
+    const VolPathIntegrator guided = box.Guided();
+    RayCounts rays;
+    const std::vector<double> differences =
+        CameraSamples(*box.scene, 100000, 11, [&](RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler) {
+            UnguidedMoment moment;
+            const double y = guided.Li(ray, lambda, sampler, rays, &moment).Average();
+            return moment.WeightedEstimate(kToValue) - y;
+        });
+    const MeanAndError d = MeanOf(differences);
+    EXPECT_LT(std::abs(d.mean), 4 * d.standardError) << "difference " << d.mean << " +- " << d.standardError;
+}
+
+// The estimate of volpath's second moment from the guided paths against volpath's squares
+// (within 4 standard errors of the difference).
+TEST(GuidedVolPath, ItsEstimateOfVolPathsSecondMomentIsUnbiased) {
+    MostlyGuidedFogBox box;
+    const VolPathIntegrator guided = box.Guided(), volpath = box.VolPath();
+    constexpr int kSamples = 100000;
+    RayCounts rays;
+    int reweighted = 0;
+    const std::vector<double> estimates =
+        CameraSamples(*box.scene, kSamples, 11, [&](RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler) {
+            UnguidedMoment moment;
+            const double y = guided.Li(ray, lambda, sampler, rays, &moment).Average();
+            const double estimate = moment.SecondMoment(kToValue);
+            reweighted += std::abs(estimate - y * y) > 1e-3 * y * y;
+            return estimate;
+        });
+    const std::vector<double> squares =
+        CameraSamples(*box.scene, kSamples, 12, [&](RayDifferential ray, SampledWavelengths &lambda, Sampler &sampler) {
+            const double y = volpath.Li(ray, lambda, sampler, rays).Average();
+            return y * y;
+        });
+    EXPECT_GT(reweighted, kSamples / 10);  // the tree guided a tenth of the paths or more
+    const MeanAndError a = MeanOf(estimates), b = MeanOf(squares);
+    EXPECT_LT(std::abs(DifferenceZ(a, b)), 4) << "guided estimate " << a.mean << " +- " << a.standardError
+                                              << ", volpath's " << b.mean << " +- " << b.standardError;
 }
 
 // The dispatch: without media or subsurface materials guidedvolpath's render is guidedpath's.
