@@ -101,7 +101,7 @@ pstd::optional<PathGuide::Scatter> PathGuide::SamplePhase(const HGPhaseFunction 
     } else {
         wi = SampleGuide(*guide.directions, u, &pdfGuide);
     }
-    const Float pdfPhase = phase.PDF(wo, wi), p = phase.p(wo, wi);
+    const Float p = phase.p(wo, wi), pdfPhase = p;  // Henyey-Greenstein samples its own density
     const Float mixture = guide.directions ? guide.Mixture(pdfPhase, pdfGuide) : pdfPhase;
     if (!(mixture > 0))
         return {};
