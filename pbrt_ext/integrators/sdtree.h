@@ -90,9 +90,13 @@ class DTree {
     double weight = 0;
 };
 
-// The options of an SD-tree, with the papers' values by default.
+// The options of an SD-tree, with the papers' values by default but for c.
 struct SDTreeOptions {
-    double spatialThreshold = 12000;  // c: a leaf splits past c sqrt(2^k) records
+    // c: a leaf splits past c sqrt(2^k) records. Müller et al.'s 12000 left the trees of 320×240
+    // renders coarse; 3000 (four times the leaves) gave, at 256 spp, 2.0× the efficiency in the
+    // torchiere's room, 1.35× in veach-ajar, 1.06× and 1.10× in the slit room and under the
+    // fabric, for 10-27 % more time per sample; 1000 was no better (docs/comparison.md).
+    double spatialThreshold = 3000;
     double directionalThreshold = 0.01;
     int maxDirectionalDepth = 20;
     size_t maxBytes = size_t(256) << 20;  // no spatial split past this

@@ -161,7 +161,7 @@ SDTree Trained(int records) {
 }
 
 TEST(SDTree, SplitsLeavesThatRecordedMany) {
-    EXPECT_EQ(Trained(1000).Stats().leaves, 1);    // c sqrt(2^0) = 12000 records before a split
+    EXPECT_EQ(Trained(1000).Stats().leaves, 1);    // c sqrt(2^0) = 3000 records before a split
     SDTree::Statistics s = Trained(100000).Stats();
     EXPECT_GT(s.leaves, 4);
     EXPECT_EQ(s.spatialNodes, 2 * s.leaves - 1);
