@@ -214,17 +214,23 @@ void Train(const Scene &scene, SDTree &tree) {
     }
 }
 
-TEST(GuidedPath, ItsEstimateOfThePathTracersSecondMomentIsUnbiased) {
-    auto scene = CornellBox(Point2i(8, 8), 64, Guided(10));
-    // Guiding nine directions in ten, so that the guided paths' own second moment is far from
-    // the path tracer's, and paths up to 10 vertices long, whose roulettes (from the third vertex)
-    // differ. Without the roulettes' ratio (UnguidedMoment::Survived) z was 5.3; without any
-    // ratio, 6.9 with a third of the samples.
+// A tree trained on scene that guides nine directions in ten, so that the guided paths' own
+// second moment is far from the path tracer's.
+SDTree MostlyGuidedTree(const Scene &scene) {
     SDTreeOptions mostlyGuided;
     mostlyGuided.bsdfFraction = 0.1f;
     mostlyGuided.learnBSDFFraction = false;
-    SDTree tree(scene->aggregate.WorldBound(), mostlyGuided);
-    Train(*scene, tree);
+    SDTree tree(scene.aggregate.WorldBound(), mostlyGuided);
+    Train(scene, tree);
+    return tree;
+}
+
+TEST(GuidedPath, ItsEstimateOfThePathTracersSecondMomentIsUnbiased) {
+    // Paths up to 10 vertices long, whose roulettes (from the third vertex) differ. Without the
+    // roulettes' ratio (UnguidedMoment::Survived) z was 5.3; without any ratio, 6.9 with a third of
+    // the samples.
+    auto scene = CornellBox(Point2i(8, 8), 64, Guided(10));
+    SDTree tree = MostlyGuidedTree(*scene);
     const GuidedPathIntegrator guided(*scene, scene->integratorOptions, tree, false);
     const PathIntegrator path(*scene, PathTracer(10));
     const SampledSpectrum toValue(1.f / NSpectrumSamples);
@@ -256,11 +262,7 @@ TEST(GuidedPath, ItsEstimateOfThePathTracersSecondMomentIsUnbiased) {
 // mixture's density moved it by 8.2 and -4.9.
 TEST(GuidedPath, ItsPathWeightedEstimateHasTheSamplesMean) {
     auto scene = CornellBox(Point2i(8, 8), 64, Guided(10));
-    SDTreeOptions mostlyGuided;
-    mostlyGuided.bsdfFraction = 0.1f;
-    mostlyGuided.learnBSDFFraction = false;
-    SDTree tree(scene->aggregate.WorldBound(), mostlyGuided);
-    Train(*scene, tree);
+    SDTree tree = MostlyGuidedTree(*scene);
     const GuidedPathIntegrator guided(*scene, scene->integratorOptions, tree, false);
     RayCounts rays;
     const std::vector<double> differences =
