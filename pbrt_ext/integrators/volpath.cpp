@@ -131,11 +131,7 @@ bool VolPathIntegrator::ScatterAtSurface(PathState &path, const SurfaceInteracti
             return false;
         const SampledSpectrum gain = scatter->weight * AbsDot(scatter->wi, ns);
         path.beta *= gain;
-        path.r_l = path.r_u / scatter->pdf;
-        if (path.unguided) {
-            path.r_lPath = path.r_u / scatter->pdfOwn;
-            path.unguided->Scattered(scatter->pdfOwn, scatter->pdf);
-        }
+        path.Scattered(scatter->pdf, scatter->pdfOwn);
         *sample = scatter->sample;
         if (path.record && !sample->IsSpecular())
             AddRecordedVertex(path, si.p, vertex, *scatter, gain);
@@ -163,11 +159,7 @@ bool VolPathIntegrator::ScatterInMedium(PathState &path, const MediumInteraction
         if (!scatter)
             return false;
         path.beta *= scatter->weight;
-        path.r_l = path.r_u / scatter->pdf;
-        if (path.unguided) {
-            path.r_lPath = path.r_u / scatter->pdfOwn;
-            path.unguided->Scattered(scatter->pdfOwn, scatter->pdf);
-        }
+        path.Scattered(scatter->pdf, scatter->pdfOwn);
         wi = scatter->wi;
         if (path.record)
             AddRecordedVertex(path, mi.p, vertex, *scatter, scatter->weight);
@@ -253,8 +245,7 @@ bool VolPathIntegrator::ScatterSubsurface(PathState &path, const SurfaceInteract
     if (!bs)
         return false;
     path.beta *= bs->f * AbsDot(bs->wi, Vector3f(pi.shading.n)) / bs->pdf;
-    path.r_l = path.r_u / bs->pdf;
-    path.r_lPath = path.r_l;  // the exit is not guided
+    path.Scattered(bs->pdf, bs->pdf);  // the exit is not guided
     path.specularBounce = false;
     path.ray = pi.SpawnRay(path.ray, bs->wi, bs->flags, bs->eta);
     return true;

@@ -74,6 +74,15 @@ class VolPathIntegrator {
         }
         void Add(const SampledSpectrum &contribution) { Add(contribution, contribution); }
         void Add(const DirectLight &d) { Add(d.Ld, d.LdPath); }
+        // After a scatter into a direction sampled with density pdf, which volpath samples with
+        // pdfOwn: the light-sampling probabilities from r_u, and the moment's importance ratio.
+        void Scattered(Float pdf, Float pdfOwn) {
+            r_l = r_u / pdf;
+            if (unguided) {
+                r_lPath = r_u / pdfOwn;
+                unguided->Scattered(pdfOwn, pdf);
+            }
+        }
         // Multiplies both light-sampling probabilities along a stretch of medium.
         void ScaleLightProbability(const SampledSpectrum &factor) {
             r_l *= factor;
